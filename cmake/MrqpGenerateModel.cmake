@@ -1,0 +1,50 @@
+# mrqp_generate_model(<name> URDF <file> [FLOATING_BASE] [PROBE] [OUTPUT_DIR <dir>])
+#
+# Runs the mrqp model generator at build time on <file> and defines a static library
+# target <name> holding the generated, allocation-free model code (namespace <name>,
+# header "<name>.hpp"). The code is regenerated whenever the URDF or the generator changes.
+# PROBE also builds <name>_probe, the standalone JSON probe program.
+include_guard(GLOBAL)
+
+function(mrqp_generate_model name)
+  cmake_parse_arguments(ARG "FLOATING_BASE;PROBE" "URDF;OUTPUT_DIR" "" ${ARGN})
+  if(NOT ARG_URDF)
+    message(FATAL_ERROR "mrqp_generate_model(${name}): URDF <file> is required")
+  endif()
+  if(NOT name MATCHES "^[A-Za-z_][A-Za-z0-9_]*$")
+    message(FATAL_ERROR "mrqp_generate_model(${name}): the name must be a C++ identifier")
+  endif()
+  if(NOT TARGET mrqp::mrqp-gen)
+    message(FATAL_ERROR "mrqp_generate_model(${name}): the generator mrqp::mrqp-gen is not available "
+                        "(configure with MRQP_BUILD_MODEL_GEN=ON or find_package(mrqp) on a host install)")
+  endif()
+  get_filename_component(urdf "${ARG_URDF}" ABSOLUTE)
+  if(ARG_OUTPUT_DIR)
+    set(out "${ARG_OUTPUT_DIR}")
+  else()
+    set(out "${CMAKE_CURRENT_BINARY_DIR}/mrqp_models")
+  endif()
+  set(flags)
+  set(outputs "${out}/${name}.hpp" "${out}/${name}.cpp")
+  if(ARG_FLOATING_BASE)
+    list(APPEND flags --floating-base)
+  endif()
+  if(ARG_PROBE)
+    list(APPEND flags --probe)
+    list(APPEND outputs "${out}/${name}_probe.cpp")
+  endif()
+  add_custom_command(
+    OUTPUT ${outputs}
+    COMMAND mrqp::mrqp-gen "${urdf}" --name ${name} --out "${out}" --quiet ${flags}
+    DEPENDS "${urdf}" mrqp::mrqp-gen
+    COMMENT "mrqp-gen: generating model ${name} from ${ARG_URDF}"
+    VERBATIM)
+  add_library(${name} STATIC "${out}/${name}.cpp" "${out}/${name}.hpp")
+  target_include_directories(${name} PUBLIC "$<BUILD_INTERFACE:${out}>")
+  target_link_libraries(${name} PUBLIC Eigen3::Eigen)
+  target_compile_features(${name} PUBLIC cxx_std_17)
+  if(ARG_PROBE)
+    add_executable(${name}_probe "${out}/${name}_probe.cpp")
+    target_link_libraries(${name}_probe PRIVATE ${name})
+  endif()
+endfunction()
