@@ -1,13 +1,15 @@
-# mrqp_generate_model(<name> URDF <file> [FLOATING_BASE] [PROBE] [OUTPUT_DIR <dir>])
+# mrqp_generate_model(<name> URDF <file> [FLOATING_BASE] [PROBE] [OUTPUT_DIR <dir>]
+#                     [GENERATOR_ARGS <args>...])
 #
 # Runs the mrqp model generator at build time on <file> and defines a static library
 # target <name> holding the generated, allocation-free model code (namespace <name>,
 # header "<name>.hpp"). The code is regenerated whenever the URDF or the generator changes.
-# PROBE also builds <name>_probe, the standalone JSON probe program.
+# PROBE also builds <name>_probe, the standalone JSON probe program. GENERATOR_ARGS are passed
+# to mrqp-gen as they are (e.g. --allow-nonphysical-inertia, --package-path DIR).
 include_guard(GLOBAL)
 
 function(mrqp_generate_model name)
-  cmake_parse_arguments(ARG "FLOATING_BASE;PROBE" "URDF;OUTPUT_DIR" "" ${ARGN})
+  cmake_parse_arguments(ARG "FLOATING_BASE;PROBE" "URDF;OUTPUT_DIR" "GENERATOR_ARGS" ${ARGN})
   if(NOT ARG_URDF)
     message(FATAL_ERROR "mrqp_generate_model(${name}): URDF <file> is required")
   endif()
@@ -24,7 +26,7 @@ function(mrqp_generate_model name)
   else()
     set(out "${CMAKE_CURRENT_BINARY_DIR}/mrqp_models")
   endif()
-  set(flags)
+  set(flags ${ARG_GENERATOR_ARGS})
   set(outputs "${out}/${name}.hpp" "${out}/${name}.cpp")
   if(ARG_FLOATING_BASE)
     list(APPEND flags --floating-base)

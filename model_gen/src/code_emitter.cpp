@@ -123,6 +123,14 @@ class Emitter {
     return e.str();
   }
 
+  /// The regressor is fixed-size when it fits Eigen's stack limit (128 KiB), else nv × dynamic,
+  /// sized once by the caller (regressor() never resizes it).
+  std::string regressorType() const {
+    const long entries = static_cast<long>(t_.nv) * 10 * nb_;
+    if (entries * 8 <= 131072) return "using Regressor = Eigen::Matrix<double, nv, nparams>;\n";
+    return "/// Too large for a fixed-size matrix: construct once as Regressor(nv, nparams).\n"
+           "using Regressor = Eigen::Matrix<double, nv, Eigen::Dynamic>;\n";
+  }
   void emitLocalTransforms(std::ostream& o) const;
   void emitForwardPass(std::ostream& o) const;
   void emitBackwardTorques(std::ostream& o) const;
@@ -160,7 +168,7 @@ std::string Emitter::header() const {
     << "using Jacobian = Eigen::Matrix<double, 6, nv>;\n"
     << "using ComJacobian = Eigen::Matrix<double, 3, nv>;\n"
     << "using ParamVector = Eigen::Matrix<double, nparams, 1>;\n"
-    << "using Regressor = Eigen::Matrix<double, nv, nparams>;\n"
+    << regressorType()
     << "using Motion = Eigen::Matrix<double, 6, 1>;\n\n"
     << "/// A placement: x_parent = R x + p.\n"
     << "struct Pose {\n  Eigen::Matrix3d R;\n  Eigen::Vector3d p;\n};\n\n"

@@ -1,6 +1,7 @@
 #include "urdf_loader.hpp"
 
 #include <console_bridge/console.h>
+#include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Eigenvalues>
@@ -31,9 +32,44 @@ class CapturedLog : public console_bridge::OutputHandler {
   CapturedLog& operator=(const CapturedLog&) = delete;
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
     if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) error = true;
   }
   std::vector<std::string> messages;
+  /// urdfdom ignores a failed <link> sub-element (e.g. ixx="inf") and returns a model anyway.
+  bool error = false;
 };
+
+/// Names the element behind urdfdom messages that name none: a missing <robot> element (not XML at all),
+/// or "no root link" (finds the joint that closes the loop). Empty when neither applies.
+std::string describeParseFailure(const std::string& xml) {
+  TiXmlDocument doc;
+  doc.Parse(xml.c_str());
+  const TiXmlElement* robot = doc.FirstChildElement("robot");
+  if (!robot) return "no <robot> element (not an XML URDF document)";
+  std::vector<std::string> links;
+  for (const TiXmlElement* l = robot->FirstChildElement("link"); l; l = l->NextSiblingElement("link"))
+    if (const char* n = l->Attribute("name")) links.push_back(n);
+  std::map<std::string, std::pair<std::string, std::string>> parentOf;  // child link -> (joint, parent link)
+  for (const TiXmlElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const TiXmlElement* parent = j->FirstChildElement("parent");
+    const TiXmlElement* child = j->FirstChildElement("child");
+    const char* name = j->Attribute("name");
+    if (!name || !parent || !child || !parent->Attribute("link") || !child->Attribute("link")) continue;
+    parentOf.emplace(child->Attribute("link"), std::make_pair(std::string(name), std::string(parent->Attribute("link"))));
+  }
+  if (links.empty()) return {};
+  for (const auto& l : links)
+    if (!parentOf.count(l)) return {};  // there is a root: not this defect
+  std::set<std::string> seen;
+  std::string cur = links.front();
+  while (parentOf.count(cur)) {
+    if (!seen.insert(cur).second)
+      return "joint '" + parentOf[cur].first + "': closes a kinematic cycle through link '" + cur +
+             "' (no root link: every link has a parent joint)";
+    cur = parentOf[cur].second;
+  }
+  return {};
+}
 
 [[noreturn]] void fail(const std::string& source, const std::string& what) {
   throw ModelError(source + ": " + what);
@@ -290,8 +326,11 @@ class TreeBuilder {
       out.has_limits = true;
       out.lower = out.continuous ? -kInf : j.limits->lower;
       out.upper = out.continuous ? kInf : j.limits->upper;
-      out.velocity = j.limits->velocity > 0 ? j.limits->velocity : kInf;
-      out.effort = j.limits->effort > 0 ? j.limits->effort : kInf;
+      // As given: effort 0 is a passive joint (the door's hinge), not an unlimited one.
+      out.velocity = j.limits->velocity;
+      out.effort = j.limits->effort;
+      if (out.velocity == 0.0 && !j.mimic)
+        tree_.warnings.push_back(quoted("joint", j.name) + ": velocity limit 0; velocity limits will hold it still");
     } else {
       out.lower = -kInf;
       out.upper = kInf;
@@ -472,11 +511,14 @@ KinematicTree loadUrdfString(const std::string& xml, const std::string& source, 
       log.messages.push_back(e.what());
     }
     parserMessages = log.messages;
+    if (log.error) model.reset();
   }
   if (!model) {
     std::string why;
     for (const auto& m : parserMessages) why += (why.empty() ? "" : "; ") + m;
     if (why.empty()) why = "not a valid URDF document";
+    const std::string detail = describeParseFailure(xml);
+    if (!detail.empty()) why += "; " + detail;
     fail(source, "URDF parse error: " + why);
   }
   TreeBuilder builder(*model, source, base_dir, options);

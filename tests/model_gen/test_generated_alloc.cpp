@@ -1,0 +1,126 @@
+// Every generated function, called 10,000 times, allocates nothing: the global allocator is
+// replaced by a counting one (operator new and malloc), and Eigen is built with
+// EIGEN_RUNTIME_NO_MALLOC and told that allocation is forbidden during the calls.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <memory>
+#include <new>
+
+#include "gen_jvrc1.hpp"
+#include "gen_panda.hpp"
+#include "gen_romeo.hpp"
+
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+extern "C" void __libc_free(void*);
+
+namespace {
+std::atomic<long> g_allocations{0};
+}
+
+extern "C" void* malloc(std::size_t n) {
+  ++g_allocations;
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t a, std::size_t b) {
+  ++g_allocations;
+  return __libc_calloc(a, b);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  ++g_allocations;
+  return __libc_realloc(p, n);
+}
+extern "C" void free(void* p) { __libc_free(p); }
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = __libc_malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void* operator new(std::size_t n, std::align_val_t al) {
+  ++g_allocations;
+  void* p = nullptr;
+  if (posix_memalign(&p, static_cast<std::size_t>(al), n ? n : 1) != 0) throw std::bad_alloc();
+  return p;
+}
+void* operator new[](std::size_t n, std::align_val_t al) { return operator new(n, al); }
+void operator delete(void* p) noexcept { __libc_free(p); }
+void operator delete[](void* p) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+
+namespace {
+
+/// Counts the allocations made by `body` called `n` times, with Eigen's allocation forbidden.
+template <class F>
+long allocationsDuring(int n, F&& body) {
+  Eigen::internal::set_is_malloc_allowed(false);
+  const long before = g_allocations.load();
+  for (int i = 0; i < n; ++i) body(i);
+  const long after = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(true);
+  return after - before;
+}
+
+
+#define MRQP_ALLOC_CHECK(NS)                                                                    \
+  do {                                                                                          \
+    auto d = std::make_unique<NS::Data>();                                                      \
+    auto M = std::make_unique<NS::MassMatrix>();                                                \
+    auto Y = std::make_unique<NS::Regressor>();                                                 \
+    Y->resize(NS::nv, NS::nparams);                                                             \
+    auto J = std::make_unique<NS::Jacobian>();                                                  \
+    auto Jc = std::make_unique<NS::ComJacobian>();                                              \
+    auto phi = std::make_unique<NS::ParamVector>();                                             \
+    NS::ConfigVector q, q2;                                                                     \
+    NS::neutral(q);                                                                             \
+    NS::TangentVector v = NS::TangentVector::Constant(0.1), a = NS::TangentVector::Constant(0.2); \
+    NS::TangentVector tau, N;                                                                   \
+    const Eigen::Vector3d pt(0.01, 0.02, 0.03);                                                 \
+    double sink = 0.0;                                                                          \
+    const int n = 10000;                                                                        \
+    CHECK(allocationsDuring(n, [&](int) { NS::forwardKinematics(*d, q); }) == 0);             \
+    CHECK(allocationsDuring(n, [&](int) { NS::forwardKinematics(*d, q, v); }) == 0);          \
+    CHECK(allocationsDuring(n, [&](int i) { sink += NS::framePose(*d, i % NS::nframes).p(0); }) == 0); \
+    CHECK(allocationsDuring(n, [&](int i) {                                                     \
+            NS::frameJacobian(*d, i % NS::nframes, pt,                                          \
+                              i % 2 ? NS::ReferenceFrame::Local : NS::ReferenceFrame::WorldAligned, *J); \
+          }) == 0);                                                                             \
+    CHECK(allocationsDuring(n, [&](int i) {                                                     \
+            sink += NS::frameBiasAcceleration(*d, i % NS::nframes, pt,                          \
+                                              NS::ReferenceFrame::WorldAligned)(0);             \
+          }) == 0);                                                                             \
+    CHECK(allocationsDuring(n, [&](int) { sink += NS::centerOfMass(*d)(0); }) == 0);            \
+    CHECK(allocationsDuring(n, [&](int) { NS::comJacobian(*d, *Jc); }) == 0);                   \
+    CHECK(allocationsDuring(n, [&](int) { NS::crba(*d, q, *M); }) == 0);                        \
+    CHECK(allocationsDuring(n, [&](int) { NS::nonLinearEffects(*d, q, v, N); }) == 0);          \
+    CHECK(allocationsDuring(n, [&](int) { NS::rnea(*d, q, v, a, tau); }) == 0);                 \
+    CHECK(allocationsDuring(n, [&](int) { NS::regressor(*d, q, v, a, *Y); }) == 0);             \
+    CHECK(allocationsDuring(n, [&](int) { NS::inertialParameters(*phi); }) == 0);               \
+    CHECK(allocationsDuring(n, [&](int) { NS::integrate(q, v, 1e-3, q2); }) == 0);              \
+    CHECK(allocationsDuring(n, [&](int) { NS::neutral(q2); }) == 0);                            \
+    CHECK(allocationsDuring(n, [&](int) { sink += NS::frameIndex("no such frame"); }) == 0);    \
+    CHECK(std::isfinite(sink));                                                                 \
+  } while (false)
+
+}  // namespace
+
+TEST_CASE("the counting allocator sees allocations", "[model_gen][realtime]") {
+  // the test would be vacuous if the replacement were not in effect
+  CHECK(allocationsDuring(3, [](int) { delete new int(1); }) == 3);
+  CHECK(allocationsDuring(2, [](int) { std::free(std::malloc(16)); }) == 2);
+}
+
+TEST_CASE("generated Panda functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(gen_panda); }
+
+TEST_CASE("generated JVRC-1 (free-flyer) functions do not allocate", "[model_gen][realtime]") {
+  MRQP_ALLOC_CHECK(gen_jvrc1);
+}
+
+TEST_CASE("generated Romeo functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(gen_romeo); }

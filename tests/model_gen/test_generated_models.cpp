@@ -1,0 +1,288 @@
+// Generated model code against the independent slow reference (tests/reference) and against
+// finite differences, on every URDF of tests/data/models.
+#include <catch2/catch.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "gen_door.hpp"
+#include "gen_human.hpp"
+#include "gen_jvrc1.hpp"
+#include "gen_panda.hpp"
+#include "gen_pendulum.hpp"
+#include "gen_romeo.hpp"
+#include "model_adapter.hpp"
+#include "reference_model.hpp"
+
+MRQP_MODEL_ADAPTER(gen_door);
+MRQP_MODEL_ADAPTER(gen_pendulum);
+MRQP_MODEL_ADAPTER(gen_panda);
+MRQP_MODEL_ADAPTER(gen_jvrc1);
+MRQP_MODEL_ADAPTER(gen_romeo);
+MRQP_MODEL_ADAPTER(gen_human);
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::Vector3d;
+using Eigen::VectorXd;
+using mrqp::test::ReferenceModel;
+
+std::string modelPath(const char* file) { return std::string(MRQP_TEST_DATA_DIR) + "/models/" + file; }
+
+double maxAbs(const MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
+
+Vector3d log3(const Eigen::Matrix3d& R) {
+  const Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+template <class M>
+typename M::ConfigVector randomConfig(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  typename M::ConfigVector q;
+  M::neutral(q);
+  int first = 0;
+  if (M::floating_base) {
+    for (int i = 0; i < 3; ++i) q(i) = u(rng);
+    Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
+    quat.normalize();
+    for (int i = 0; i < 4; ++i) q(3 + i) = quat(i);
+    first = 7;
+  }
+  for (int i = first; i < M::nq; ++i) {
+    double lo = M::qLower()[i], hi = M::qUpper()[i];
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      lo = -3.0;
+      hi = 3.0;
+    }
+    q(i) = lo + (hi - lo) * 0.5 * (u(rng) + 1.0);
+  }
+  return q;
+}
+
+template <class V>
+V randomVector(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  V v;
+  for (int i = 0; i < v.size(); ++i) v(i) = u(rng);
+  return v;
+}
+
+/// Finite-difference twist of a frame between q⁻ and q⁺ (2h apart): (ω; v) of `point`.
+template <class M>
+Eigen::Matrix<double, 6, 1> fdTwist(typename M::Data& d, int f, const Vector3d& point,
+                                    const typename M::ConfigVector& qm, const typename M::ConfigVector& qp,
+                                    double h, bool world) {
+  M::fk(d, qm);
+  const auto Pm = M::framePose(d, f);
+  M::fk(d, qp);
+  const auto Pp = M::framePose(d, f);
+  const Vector3d xm = Pm.p + Pm.R * point, xp = Pp.p + Pp.R * point;
+  Eigen::Matrix<double, 6, 1> t;
+  if (world) {
+    t.head<3>() = log3(Pp.R * Pm.R.transpose()) / (2 * h);
+    t.tail<3>() = (xp - xm) / (2 * h);
+  } else {
+    t.head<3>() = log3(Pm.R.transpose() * Pp.R) / (2 * h);
+    // linear velocity expressed in the frame at the middle configuration
+    const Eigen::Matrix3d Rmid = Pm.R * Eigen::AngleAxisd(0.5 * log3(Pm.R.transpose() * Pp.R).norm(),
+                                                         log3(Pm.R.transpose() * Pp.R).normalized())
+                                             .toRotationMatrix();
+    t.tail<3>() = Rmid.transpose() * (xp - xm) / (2 * h);
+  }
+  return t;
+}
+
+/// Everything a generated model must satisfy, checked at several random states.
+template <class M>
+void checkModel(const char* file, bool floating, int expectedSingular) {
+  const ReferenceModel ref = ReferenceModel::fromUrdf(modelPath(file), floating);
+  auto d = std::make_unique<typename M::Data>();
+  auto dm = std::make_unique<typename M::Data>();
+  INFO("model " << file);
+
+  // structure, names, limits
+  REQUIRE(M::nq == ref.nq());
+  REQUIRE(M::nv == ref.nv());
+  REQUIRE(M::floating_base == floating);
+  const auto& names = ref.jointNames();
+  REQUIRE(names.size() == M::jointNames().size());
+  for (size_t i = 0; i < names.size(); ++i) CHECK(names[i] == M::jointNames()[i]);
+  REQUIRE(ref.frameNames().size() == static_cast<size_t>(M::nframes));
+  for (int f = 0; f < M::nframes; ++f) CHECK(ref.frameNames()[f] == M::frameNames()[f]);
+  for (int i = 0; i < M::nq; ++i) {
+    CHECK(M::qLower()[i] == ref.lowerPositionLimit()(i));
+    CHECK(M::qUpper()[i] == ref.upperPositionLimit()(i));
+  }
+  for (int i = 0; i < M::nv; ++i) {
+    CHECK(M::vLimit()[i] == ref.velocityLimit()(i));
+    CHECK(M::effortLimit()[i] == ref.effortLimit()(i));
+  }
+  CHECK(M::totalMass() == Approx(ref.totalMass()).epsilon(1e-12));
+  CHECK(M::frameIndex(M::frameNames()[M::nframes - 1]) == M::nframes - 1);
+  CHECK(M::frameIndex("no such frame") == -1);
+
+  typename M::ParamVector phi;
+  M::params(phi);
+  const VectorXd phiRef = ref.inertialParameters();
+  REQUIRE(phiRef.size() == phi.size());
+  CHECK(maxAbs(phi - phiRef) < 1e-12 * std::max(1.0, maxAbs(phiRef)));
+
+  std::mt19937 rng(12345);
+  auto M_ = std::make_unique<typename M::MassMatrix>();
+  auto Y = std::make_unique<typename M::Regressor>();
+  Y->resize(M::nv, 10 * M::nbodies);
+  auto J = std::make_unique<typename M::Jacobian>();
+  auto Jc = std::make_unique<typename M::ComJacobian>();
+  typename M::MassMatrix& Mm = *M_;
+  for (int sample = 0; sample < 4; ++sample) {
+    INFO("sample " << sample);
+    const typename M::ConfigVector q = randomConfig<M>(rng);
+    const auto v = randomVector<typename M::TangentVector>(rng);
+    const auto a = randomVector<typename M::TangentVector>(rng);
+    const VectorXd qx = q, vx = v, ax = a;
+
+    // mass matrix: symmetric, equal to the reference (built column by column from its RNEA),
+    // positive definite except along coordinates that move no mass
+    M::crba(*d, q, Mm);
+    const MatrixXd Mref = ref.massMatrix(qx);
+    const double scale = std::max(1.0, maxAbs(Mref));
+    CHECK(maxAbs(Mm - Mm.transpose()) < 1e-12 * scale);
+    CHECK(maxAbs(Mm - Mref) < 1e-9 * scale);
+    const MatrixXd Mdyn = Mm;
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(Mdyn);
+    int singular = 0;
+    for (int i = 0; i < M::nv; ++i) {
+      CHECK(eig.eigenvalues()(i) > -1e-10 * scale);
+      if (eig.eigenvalues()(i) < 1e-10 * scale) ++singular;
+    }
+    CHECK(singular == expectedSingular);
+
+    // bias forces, inverse dynamics, τ = M a + N, regressor
+    typename M::TangentVector N, tau, N0;
+    M::nle(*d, q, v, N);
+    M::rnea(*d, q, v, a, tau);
+    const VectorXd Nref = ref.nonLinearEffects(qx, vx);
+    const double fscale = std::max(1.0, maxAbs(Nref));
+    CHECK(maxAbs(N - Nref) < 1e-9 * fscale);
+    CHECK(maxAbs(tau - ref.rnea(qx, vx, ax)) < 1e-9 * fscale);
+    CHECK(maxAbs(tau - (Mm * a + N)) < 1e-9 * fscale);
+    M::regressor(*d, q, v, a, *Y);
+    CHECK(maxAbs((*Y) * phi - tau) < 1e-9 * fscale);
+
+    // Ṁ − 2C: with C v = N(q, v) − N(q, 0), vᵀ (Ṁ − 2C) v = 0 (Ṁ by central differences)
+    {
+      const double h = 1e-6;
+      typename M::ConfigVector qp, qm;
+      M::integrate(q, v, h, qp);
+      M::integrate(q, v, -h, qm);
+      auto Mp = std::make_unique<typename M::MassMatrix>();
+      auto Mn = std::make_unique<typename M::MassMatrix>();
+      M::crba(*dm, qp, *Mp);
+      M::crba(*dm, qm, *Mn);
+      const typename M::MassMatrix Mdot = (*Mp - *Mn) / (2 * h);
+      typename M::TangentVector zero = M::TangentVector::Zero();
+      M::nle(*d, q, zero, N0);
+      const double lhs = v.dot(Mdot * v), rhs = 2.0 * v.dot(N - N0);
+      CHECK(std::abs(lhs - rhs) < 1e-5 * std::max(1.0, std::abs(rhs)));
+    }
+
+    // kinematics: poses equal the reference's; Jacobians equal the reference's and central
+    // differences of the poses; J̇v equals central differences of J v
+    M::fk(*d, q, v);
+    for (int f = 0; f < M::nframes; ++f) {
+      INFO("frame " << M::frameNames()[f]);
+      const auto P = M::framePose(*d, f);
+      const auto Pref = ref.framePose(qx, M::frameNames()[f]);
+      CHECK(maxAbs(P.R - Pref.R) < 1e-12);
+      CHECK(maxAbs(P.p - Pref.p) < 1e-12);
+    }
+    const Vector3d point(0.05, -0.02, 0.03);
+    const double h = 1e-6;
+    typename M::ConfigVector qp, qm;
+    M::integrate(q, v, h, qp);
+    M::integrate(q, v, -h, qm);
+    for (int f = 0; f < M::nframes; f += (M::nframes > 12 ? 5 : 1)) {
+      for (bool world : {false, true}) {
+        INFO("frame " << M::frameNames()[f] << (world ? " world-aligned" : " local"));
+        M::fk(*d, q, v);
+        M::jacobian(*d, f, point, world, *J);
+        const MatrixXd Jref = ref.frameJacobian(qx, M::frameNames()[f], point, world);
+        CHECK(maxAbs(*J - Jref) < 1e-10);
+        const Eigen::Matrix<double, 6, 1> twist = (*J) * v;
+        const auto fd = fdTwist<M>(*dm, f, point, qm, qp, h, world);
+        CHECK(maxAbs(twist - fd) < 1e-6 * std::max(1.0, maxAbs(twist)));
+        const auto bias = M::bias(*d, f, point, world);
+        const auto biasRef = ref.frameBiasAcceleration(qx, vx, M::frameNames()[f], point, world);
+        CHECK(maxAbs(bias - biasRef) < 1e-9 * std::max(1.0, maxAbs(biasRef)));
+        M::fk(*dm, qp);
+        M::jacobian(*dm, f, point, world, *J);
+        const Eigen::Matrix<double, 6, 1> tp = (*J) * v;
+        M::fk(*dm, qm);
+        M::jacobian(*dm, f, point, world, *J);
+        const Eigen::Matrix<double, 6, 1> tm = (*J) * v;
+        CHECK(maxAbs(bias - (tp - tm) / (2 * h)) < 1e-5 * std::max(1.0, maxAbs(bias)));
+      }
+    }
+
+    // centre of mass: a mass-weighted sum of link CoMs in the reference; Jacobian by differences
+    M::fk(*d, q);
+    const Vector3d c = M::com(*d);
+    CHECK(maxAbs(c - ref.centerOfMass(qx)) < 1e-12);
+    M::comJacobian(*d, *Jc);
+    CHECK(maxAbs(*Jc - ref.comJacobian(qx)) < 1e-10);
+    M::fk(*dm, qp);
+    const Vector3d cp = M::com(*dm);
+    M::fk(*dm, qm);
+    const Vector3d cm = M::com(*dm);
+    CHECK(maxAbs((*Jc) * v - (cp - cm) / (2 * h)) < 1e-6);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<gen_door_adapter>("door.urdf", false, 0); }
+
+TEST_CASE("generated double pendulum (continuous joints) matches the reference", "[model_gen]") {
+  checkModel<gen_pendulum_adapter>("double-pendulum-continuous.urdf", false, 0);
+}
+
+TEST_CASE("generated Panda (prismatic, mimic finger) matches the reference", "[model_gen]") {
+  checkModel<gen_panda_adapter>("panda.urdf", false, 0);
+}
+
+TEST_CASE("generated JVRC-1 with free-flyer matches the reference", "[model_gen]") {
+  checkModel<gen_jvrc1_adapter>("jvrc1.urdf", true, 0);
+}
+
+TEST_CASE("generated Romeo matches the reference; its massless hands make M singular twice", "[model_gen]") {
+  checkModel<gen_romeo_adapter>("romeo.urdf", false, 2);
+}
+
+TEST_CASE("generated 48-dof human with free-flyer matches the reference", "[model_gen]") {
+  checkModel<gen_human_adapter>("human-subject01-48dof.urdf", true, 0);
+}
+
+TEST_CASE("integrate moves a free-flyer along the exponential of its body twist", "[model_gen]") {
+  using M = gen_jvrc1_adapter;
+  M::ConfigVector q, q1, q2, q3;
+  M::neutral(q);
+  M::TangentVector v = M::TangentVector::Zero();
+  v(2) = 0.7;  // yaw rate in the base frame
+  v(3) = 1.0;  // forward speed in the base frame
+  // half a turn: the base ends at (0, 2/ω, 0) with yaw π (a circle of radius 1/ω)
+  M::integrate(q, v, M_PI / 0.7, q1);
+  CHECK(q1(0) == Approx(0.0).margin(1e-12));
+  CHECK(q1(1) == Approx(2.0 / 0.7).epsilon(1e-12));
+  CHECK(std::abs(q1(3)) == Approx(0.0).margin(1e-12));
+  CHECK(std::abs(q1(6)) == Approx(1.0).epsilon(1e-12));
+  // composition: two half steps equal one step
+  M::integrate(q, v, 0.3, q2);
+  M::integrate(q2, v, 0.3, q3);
+  M::integrate(q, v, 0.6, q2);
+  CHECK((q3 - q2).cwiseAbs().maxCoeff() < 1e-12);
+}
