@@ -38,7 +38,7 @@ function(mrqp_generate_model name)
   add_custom_command(
     OUTPUT ${outputs}
     COMMAND mrqp::mrqp-gen "${urdf}" --name ${name} --out "${out}" --quiet ${flags}
-    DEPENDS "${urdf}" mrqp::mrqp-gen
+    DEPENDS "${urdf}" $<TARGET_FILE:mrqp::mrqp-gen>
     COMMENT "mrqp-gen: generating model ${name} from ${ARG_URDF}"
     VERBATIM)
   add_library(${name} STATIC "${out}/${name}.cpp" "${out}/${name}.hpp")

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The main job. Today: generate allocation-free model code for every URDF in ../shared/models
+# (tests/data/models when that folder is absent), compile it, and print a summary table per model
+# (links, joints, nq, nv, mass, timing of the generated functions).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+jobs=$(nproc)
+
+./tools/setup-deps.sh
+models="$root/../shared/models"
+[ -d "$models" ] || models="$root/tests/data/models"
+
+echo "== building mrqp-gen and the summary tool (Release)" >&2
+cmake -S . -B build/demo -DCMAKE_BUILD_TYPE=Release -DMRQP_BUILD_TESTS=OFF > /dev/null
+cmake --build build/demo -j"$jobs" --target mrqp-gen mrqp-model-summary > build/demo-build.log 2>&1 \
+  || { tail -40 build/demo-build.log; exit 1; }
+
+echo "== generating models from $models" >&2
+out="$root/build/demo/generated"
+mkdir -p "$out"
+for urdf in "$models"/*.urdf; do
+  base=$(basename "$urdf" .urdf)
+  name=$(echo "$base" | tr -c 'A-Za-z0-9_\n' '_')
+  flags=()
+  case "$base" in
+    jvrc1|human-*) flags+=(--floating-base) ;;
+  esac
+  case "$base" in
+    romeo) flags+=(--allow-nonphysical-inertia) ;;  # two links of the public model break the triangle inequality
+  esac
+  if ./build/demo/model_gen/mrqp-gen "$urdf" --name "$name" --out "$out" --probe "${flags[@]}" \
+       2> "$out/$name.warnings.txt"; then
+    echo "   $(grep -c 'warning' "$out/$name.warnings.txt" || true) warnings (see $out/$name.warnings.txt)" >&2
+  else
+    cat "$out/$name.warnings.txt" >&2
+    exit 1
+  fi
+done
+
+echo "== summary (generated code compiled in, median timings)" >&2
+./build/demo/tools/mrqp-model-summary --csv "$root/build/demo/model_summary.csv"
+echo "(CSV: build/demo/model_summary.csv; generated sources: build/demo/generated)" >&2

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The whole test suite: installs what it needs, builds the release configuration and runs every
+# test, then builds with AddressSanitizer + UndefinedBehaviorSanitizer and runs the unit tests
+# again, then checks that an installed mrqp serves a user's own CMake project.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+jobs=$(nproc)
+step() { printf '\n== %s\n' "$*"; }
+
+step "dependencies"
+./tools/setup-deps.sh
+
+step "release build"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release > build-release-configure.log 2>&1 \
+  || { cat build-release-configure.log; exit 1; }
+rm -f build-release-configure.log
+cmake --build build/release -j"$jobs"
+step "release tests"
+ctest --test-dir build/release -j"$jobs" --output-on-failure
+
+step "sanitizer build (ASan + UBSan)"
+cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-O1 -DCMAKE_C_FLAGS=-O1 \
+  -DMRQP_SANITIZE=ON -DMRQP_BUILD_TOOLS=OFF > /dev/null
+cmake --build build/asan -j"$jobs"
+step "sanitizer tests (unit)"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build/asan -L unit -j"$jobs" --output-on-failure
+
+step "installed package: find_package(mrqp) from a user project"
+"$root/tests/install/check_install.sh" "$root/build/release"
+
+printf '\nall tests passed\n'
