@@ -26,6 +26,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model_set.hpp"
@@ -62,7 +63,8 @@ bool check(const ReferenceModel& ref, const mrqp::tools::State<M>& s) {
   }
   if (ref.fullJointNames().size() != size_t{mrqp::tools::movingJoints<M>()}) {
     std::cerr << "bench_model: " << M::name << ": " << ref.fullJointNames().size()
-              << " moving URDF joints, but nbodies - 1 = " << mrqp::tools::movingJoints<M>() << '\n';
+              << " moving URDF joints, but nbodies - 1 = " << mrqp::tools::movingJoints<M>()
+              << '\n';
     ok = false;
   }
 
@@ -71,8 +73,9 @@ bool check(const ReferenceModel& ref, const mrqp::tools::State<M>& s) {
   for (int f = 0; f < M::nframes; ++f) {
     M::jacobianWorld(*d, f, *J);
     const MatrixXd Jg = *J;
-    ok &= close(Jg, ref.frameJacobian(q, ref.frameNames()[size_t(f)], Eigen::Vector3d::Zero(), true),
-                1e-9, "Jacobian of frame '" + ref.frameNames()[size_t(f)] + "'", M::name);
+    const std::string& name = ref.frameNames()[size_t(f)];
+    ok &= close(Jg, ref.frameJacobian(q, name, Eigen::Vector3d::Zero(), true), 1e-9,
+                "Jacobian of frame '" + name + "'", M::name);
   }
 
   auto Mm = std::make_unique<typename M::MassMatrix>();
@@ -85,6 +88,7 @@ bool check(const ReferenceModel& ref, const mrqp::tools::State<M>& s) {
   ok &= close(VectorXd(*tau), tau_ref, 1e-9, "rnea", M::name);
 
   auto Y = std::make_unique<typename M::Regressor>();
+  Y->resize(M::nv, M::nparams);  // dynamic column count on the larger models
   auto phi = std::make_unique<typename M::ParamVector>();
   M::regressor(*d, s.q, s.v, s.a, *Y);
   M::params(*phi);
@@ -92,91 +96,85 @@ bool check(const ReferenceModel& ref, const mrqp::tools::State<M>& s) {
   return ok;
 }
 
+/// Registers one benchmark, reported in microseconds.
+template <class F>
+void add(const std::string& name, F&& f) {
+  benchmark::RegisterBenchmark(name.c_str(), std::forward<F>(f))->Unit(benchmark::kMicrosecond);
+}
+
 template <class M>
 bool registerModel() {
-  auto ref = std::make_shared<const ReferenceModel>(ReferenceModel::fromUrdf(M::urdf, M::floating_base));
+  auto ref =
+      std::make_shared<const ReferenceModel>(ReferenceModel::fromUrdf(M::urdf, M::floating_base));
   auto s = std::make_shared<const mrqp::tools::State<M>>();
   if (!check<M>(*ref, *s)) return false;
   const std::string prefix = std::string(M::name) + "/";
 
-  // ---- generated ---------------------------------------------------------------------------
-  benchmark::RegisterBenchmark((prefix + "fk_all_jacobians/generated").c_str(),
-                               [s](benchmark::State& st) {
-                                 auto d = std::make_unique<typename M::Data>();
-                                 auto J = std::make_unique<typename M::Jacobian>();
-                                 for (auto _ : st) {
-                                   M::fk(*d, s->q);
-                                   for (int f = 0; f < M::nframes; ++f) {
-                                     M::jacobianWorld(*d, f, *J);
-                                     benchmark::DoNotOptimize(J->data());
-                                     benchmark::ClobberMemory();
-                                   }
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((prefix + "crba/generated").c_str(),
-                               [s](benchmark::State& st) {
-                                 auto d = std::make_unique<typename M::Data>();
-                                 auto Mm = std::make_unique<typename M::MassMatrix>();
-                                 for (auto _ : st) {
-                                   M::crba(*d, s->q, *Mm);
-                                   benchmark::DoNotOptimize(Mm->data());
-                                   benchmark::ClobberMemory();
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((prefix + "rnea/generated").c_str(),
-                               [s](benchmark::State& st) {
-                                 auto d = std::make_unique<typename M::Data>();
-                                 auto tau = std::make_unique<typename M::TangentVector>();
-                                 for (auto _ : st) {
-                                   M::rnea(*d, s->q, s->v, s->a, *tau);
-                                   benchmark::DoNotOptimize(tau->data());
-                                   benchmark::ClobberMemory();
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((prefix + "regressor/generated").c_str(),
-                               [s](benchmark::State& st) {
-                                 auto d = std::make_unique<typename M::Data>();
-                                 auto Y = std::make_unique<typename M::Regressor>();
-                                 for (auto _ : st) {
-                                   M::regressor(*d, s->q, s->v, s->a, *Y);
-                                   benchmark::DoNotOptimize(Y->data());
-                                   benchmark::ClobberMemory();
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
+  // ---- generated: fixed-size work space allocated once, outside the timed loop --------------
+  add(prefix + "fk_all_jacobians/generated", [s](benchmark::State& st) {
+    auto d = std::make_unique<typename M::Data>();
+    auto J = std::make_unique<typename M::Jacobian>();
+    for (auto _ : st) {
+      M::fk(*d, s->q);
+      for (int f = 0; f < M::nframes; ++f) {
+        M::jacobianWorld(*d, f, *J);
+        benchmark::DoNotOptimize(J->data());
+        benchmark::ClobberMemory();
+      }
+    }
+  });
+  add(prefix + "crba/generated", [s](benchmark::State& st) {
+    auto d = std::make_unique<typename M::Data>();
+    auto Mm = std::make_unique<typename M::MassMatrix>();
+    for (auto _ : st) {
+      M::crba(*d, s->q, *Mm);
+      benchmark::DoNotOptimize(Mm->data());
+      benchmark::ClobberMemory();
+    }
+  });
+  add(prefix + "rnea/generated", [s](benchmark::State& st) {
+    auto d = std::make_unique<typename M::Data>();
+    auto tau = std::make_unique<typename M::TangentVector>();
+    for (auto _ : st) {
+      M::rnea(*d, s->q, s->v, s->a, *tau);
+      benchmark::DoNotOptimize(tau->data());
+      benchmark::ClobberMemory();
+    }
+  });
+  add(prefix + "regressor/generated", [s](benchmark::State& st) {
+    auto d = std::make_unique<typename M::Data>();
+    auto Y = std::make_unique<typename M::Regressor>();
+    Y->resize(M::nv, M::nparams);
+    for (auto _ : st) {
+      M::regressor(*d, s->q, s->v, s->a, *Y);
+      benchmark::DoNotOptimize(Y->data());
+      benchmark::ClobberMemory();
+    }
+  });
 
-  // ---- reference ---------------------------------------------------------------------------
+  // ---- reference: its public API as it is (dynamic sizes, allocates, frames by name) ---------
   const VectorXd q = s->q, v = s->v, a = s->a;
-  benchmark::RegisterBenchmark((prefix + "fk_all_jacobians/reference").c_str(),
-                               [ref, q](benchmark::State& st) {
-                                 const auto& frames = ref->frameNames();
-                                 for (auto _ : st) {
-                                   for (const auto& f : frames) {
-                                     MatrixXd J = ref->frameJacobian(q, f, Eigen::Vector3d::Zero(), true);
-                                     benchmark::DoNotOptimize(J.data());
-                                   }
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((prefix + "crba/reference").c_str(),
-                               [ref, q](benchmark::State& st) {
-                                 for (auto _ : st) {
-                                   MatrixXd Mm = ref->massMatrix(q);
-                                   benchmark::DoNotOptimize(Mm.data());
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
-  benchmark::RegisterBenchmark((prefix + "rnea/reference").c_str(),
-                               [ref, q, v, a](benchmark::State& st) {
-                                 for (auto _ : st) {
-                                   VectorXd tau = ref->rnea(q, v, a);
-                                   benchmark::DoNotOptimize(tau.data());
-                                 }
-                               })
-      ->Unit(benchmark::kMicrosecond);
+  add(prefix + "fk_all_jacobians/reference", [ref, q](benchmark::State& st) {
+    const auto& frames = ref->frameNames();
+    for (auto _ : st) {
+      for (const auto& f : frames) {
+        MatrixXd J = ref->frameJacobian(q, f, Eigen::Vector3d::Zero(), true);
+        benchmark::DoNotOptimize(J.data());
+      }
+    }
+  });
+  add(prefix + "crba/reference", [ref, q](benchmark::State& st) {
+    for (auto _ : st) {
+      MatrixXd Mm = ref->massMatrix(q);
+      benchmark::DoNotOptimize(Mm.data());
+    }
+  });
+  add(prefix + "rnea/reference", [ref, q, v, a](benchmark::State& st) {
+    for (auto _ : st) {
+      VectorXd tau = ref->rnea(q, v, a);
+      benchmark::DoNotOptimize(tau.data());
+    }
+  });
   return true;
 }
 

@@ -93,7 +93,7 @@ static inline uint32_t mrqp_fw_get_bits_be(const uint8_t *buf, unsigned offset, 
   unsigned i;
   for (i = 0u; i < nbits; ++i) {
     unsigned pos = offset + i;
-    v = (v << 1) | (uint32_t)((buf[pos >> 3] >> (7u - (pos & 7u))) & 1u);
+    v = (v << 1) | (((unsigned)buf[pos >> 3] >> (7u - (pos & 7u))) & 1u);
   }
   return v;
 }
