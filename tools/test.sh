@@ -10,6 +10,7 @@ step() { printf '\n== %s\n' "$*"; }
 
 step "dependencies"
 ./tools/setup-deps.sh
+./tools/hil/setup.sh   # qemu, busybox, the Debian kernel with vcan for the hardware-in-the-loop tests
 
 step "release build"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release > build-release-configure.log 2>&1 \
