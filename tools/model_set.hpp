@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "model/model_traits.hpp"
 #include "model_door.hpp"
 #include "model_human.hpp"
 #include "model_jvrc1.hpp"
@@ -24,38 +25,13 @@ namespace mrqp::tools {
 
 /// NS: generated namespace; LABEL: short model name; FILE: URDF file in MRQP_TOOLS_MODELS_DIR.
 #define MRQP_TOOLS_MODEL(NS, LABEL, FILE)                                                       \
-  struct NS##_face {                                                                            \
+  MRQP_MODEL_TRAITS(NS);                                                                        \
+  struct NS##_face : NS##_model {                                                               \
     static constexpr const char* name = LABEL;                                                  \
     static constexpr const char* urdf = MRQP_TOOLS_MODELS_DIR "/" FILE;                         \
-    static constexpr int nq = NS::nq, nv = NS::nv, njoints = NS::njoints;                       \
-    static constexpr int nbodies = NS::nbodies, nframes = NS::nframes, nparams = NS::nparams;   \
-    static constexpr bool floating_base = NS::floating_base;                                    \
-    using Data = NS::Data;                                                                      \
-    using ConfigVector = NS::ConfigVector;                                                      \
-    using TangentVector = NS::TangentVector;                                                    \
-    using MassMatrix = NS::MassMatrix;                                                          \
-    using Jacobian = NS::Jacobian;                                                              \
-    using Regressor = NS::Regressor;                                                            \
-    using ParamVector = NS::ParamVector;                                                        \
-    static const auto& qLower() { return NS::q_lower; }                                         \
-    static const auto& qUpper() { return NS::q_upper; }                                         \
-    static const auto& vLimit() { return NS::v_limit; }                                         \
-    static double totalMass() { return NS::totalMass(); }                                       \
-    static void neutral(ConfigVector& q) { NS::neutral(q); }                                    \
-    static void fk(Data& d, const ConfigVector& q) { NS::forwardKinematics(d, q); }             \
     static void jacobianWorld(const Data& d, int f, Jacobian& J) {                              \
-      NS::frameJacobian(d, f, Eigen::Vector3d::Zero(), NS::ReferenceFrame::WorldAligned, J);    \
+      jacobian(d, f, Eigen::Vector3d::Zero(), true, J);                                         \
     }                                                                                           \
-    static void crba(Data& d, const ConfigVector& q, MassMatrix& M) { NS::crba(d, q, M); }      \
-    static void rnea(Data& d, const ConfigVector& q, const TangentVector& v,                   \
-                     const TangentVector& a, TangentVector& tau) {                              \
-      NS::rnea(d, q, v, a, tau);                                                                \
-    }                                                                                           \
-    static void regressor(Data& d, const ConfigVector& q, const TangentVector& v,              \
-                          const TangentVector& a, Regressor& Y) {                               \
-      NS::regressor(d, q, v, a, Y);                                                             \
-    }                                                                                           \
-    static void params(ParamVector& phi) { NS::inertialParameters(phi); }                       \
   }
 
 MRQP_TOOLS_MODEL(model_door, "door", "door.urdf");
@@ -98,23 +74,7 @@ struct State {
   explicit State(unsigned seed = 12345) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    M::neutral(q);
-    int first = 0;
-    if (M::floating_base) {
-      for (int i = 0; i < 3; ++i) q(i) = u(rng);
-      Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
-      quat.normalize();
-      for (int i = 0; i < 4; ++i) q(3 + i) = quat(i);
-      first = 7;
-    }
-    for (int i = first; i < M::nq; ++i) {
-      double lo = M::qLower()[i], hi = M::qUpper()[i];
-      if (!std::isfinite(lo) || !std::isfinite(hi)) {
-        lo = -3.0;
-        hi = 3.0;
-      }
-      q(i) = lo + (hi - lo) * 0.5 * (u(rng) + 1.0);
-    }
+    q = mrqp::model::sampleConfiguration<M>(rng);
     for (int i = 0; i < M::nv; ++i) {
       const double lim = std::min(1.0, M::vLimit()[i]);
       v(i) = lim * u(rng);

@@ -1,5 +1,5 @@
 # Runs a generated probe on one neutral-ish input line and one bad line; checks the JSON shape.
-# -DPROBE=<exe> -DNQ=<nq> -DNV=<nv>
+# -DPROBE=<exe> -DNQ=<nq> -DNV=<nv> [-DEMULATOR=<program that runs PROBE, in a cross build>]
 set(line "")
 foreach(i RANGE 1 ${NQ})
   if(i EQUAL 4)
@@ -13,7 +13,7 @@ foreach(i RANGE 1 ${n2})
   string(APPEND line "0.2 ")
 endforeach()
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/probe_input_${NQ}_${NV}.txt "${line}\n1 2 3\n")
-execute_process(COMMAND ${PROBE} INPUT_FILE ${CMAKE_CURRENT_BINARY_DIR}/probe_input_${NQ}_${NV}.txt
+execute_process(COMMAND ${EMULATOR} ${PROBE} INPUT_FILE ${CMAKE_CURRENT_BINARY_DIR}/probe_input_${NQ}_${NV}.txt
                 OUTPUT_VARIABLE out RESULT_VARIABLE rc)
 string(REPLACE "\n" ";" lines "${out}")
 list(LENGTH lines count)

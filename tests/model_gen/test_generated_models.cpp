@@ -14,15 +14,15 @@
 #include "gen_panda.hpp"
 #include "gen_pendulum.hpp"
 #include "gen_romeo.hpp"
-#include "model_adapter.hpp"
+#include "model/model_traits.hpp"
 #include "reference_model.hpp"
 
-MRQP_MODEL_ADAPTER(gen_door);
-MRQP_MODEL_ADAPTER(gen_pendulum);
-MRQP_MODEL_ADAPTER(gen_panda);
-MRQP_MODEL_ADAPTER(gen_jvrc1);
-MRQP_MODEL_ADAPTER(gen_romeo);
-MRQP_MODEL_ADAPTER(gen_human);
+MRQP_MODEL_TRAITS(gen_door);
+MRQP_MODEL_TRAITS(gen_pendulum);
+MRQP_MODEL_TRAITS(gen_panda);
+MRQP_MODEL_TRAITS(gen_jvrc1);
+MRQP_MODEL_TRAITS(gen_romeo);
+MRQP_MODEL_TRAITS(gen_human);
 
 namespace {
 
@@ -38,30 +38,6 @@ double maxAbs(const MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0
 Vector3d log3(const Eigen::Matrix3d& R) {
   const Eigen::AngleAxisd aa(R);
   return aa.angle() * aa.axis();
-}
-
-template <class M>
-typename M::ConfigVector randomConfig(std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  typename M::ConfigVector q;
-  M::neutral(q);
-  int first = 0;
-  if (M::floating_base) {
-    for (int i = 0; i < 3; ++i) q(i) = u(rng);
-    Eigen::Vector4d quat(u(rng), u(rng), u(rng), u(rng));
-    quat.normalize();
-    for (int i = 0; i < 4; ++i) q(3 + i) = quat(i);
-    first = 7;
-  }
-  for (int i = first; i < M::nq; ++i) {
-    double lo = M::qLower()[i], hi = M::qUpper()[i];
-    if (!std::isfinite(lo) || !std::isfinite(hi)) {
-      lo = -3.0;
-      hi = 3.0;
-    }
-    q(i) = lo + (hi - lo) * 0.5 * (u(rng) + 1.0);
-  }
-  return q;
 }
 
 template <class V>
@@ -141,7 +117,7 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
   typename M::MassMatrix& Mm = *M_;
   for (int sample = 0; sample < 4; ++sample) {
     INFO("sample " << sample);
-    const typename M::ConfigVector q = randomConfig<M>(rng);
+    const typename M::ConfigVector q = mrqp::model::sampleConfiguration<M>(rng);
     const auto v = randomVector<typename M::TangentVector>(rng);
     const auto a = randomVector<typename M::TangentVector>(rng);
     const VectorXd qx = q, vx = v, ax = a;
@@ -245,30 +221,30 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
 
 }  // namespace
 
-TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<gen_door_adapter>("door.urdf", false, 0); }
+TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<gen_door_model>("door.urdf", false, 0); }
 
 TEST_CASE("generated double pendulum (continuous joints) matches the reference", "[model_gen]") {
-  checkModel<gen_pendulum_adapter>("double-pendulum-continuous.urdf", false, 0);
+  checkModel<gen_pendulum_model>("double-pendulum-continuous.urdf", false, 0);
 }
 
 TEST_CASE("generated Panda (prismatic, mimic finger) matches the reference", "[model_gen]") {
-  checkModel<gen_panda_adapter>("panda.urdf", false, 0);
+  checkModel<gen_panda_model>("panda.urdf", false, 0);
 }
 
 TEST_CASE("generated JVRC-1 with free-flyer matches the reference", "[model_gen]") {
-  checkModel<gen_jvrc1_adapter>("jvrc1.urdf", true, 0);
+  checkModel<gen_jvrc1_model>("jvrc1.urdf", true, 0);
 }
 
 TEST_CASE("generated Romeo matches the reference; its massless hands make M singular twice", "[model_gen]") {
-  checkModel<gen_romeo_adapter>("romeo.urdf", false, 2);
+  checkModel<gen_romeo_model>("romeo.urdf", false, 2);
 }
 
 TEST_CASE("generated 48-dof human with free-flyer matches the reference", "[model_gen]") {
-  checkModel<gen_human_adapter>("human-subject01-48dof.urdf", true, 0);
+  checkModel<gen_human_model>("human-subject01-48dof.urdf", true, 0);
 }
 
 TEST_CASE("integrate moves a free-flyer along the exponential of its body twist", "[model_gen]") {
-  using M = gen_jvrc1_adapter;
+  using M = gen_jvrc1_model;
   M::ConfigVector q, q1, q2, q3;
   M::neutral(q);
   M::TangentVector v = M::TangentVector::Zero();

@@ -1,9 +1,17 @@
-// One generic face for the generated model namespaces, so a test can be written once as a template.
+// A generated model namespace (docs/model_gen.md) behind one generic face: MRQP_MODEL_TRAITS(ns)
+// defines struct ns_model with the model's types and static forwarding functions, so that code
+// written once as a template (tests, benchmarks, the problem assembly) takes a model as a type.
 #pragma once
 
-#define MRQP_MODEL_ADAPTER(NS)                                                                   \
-  struct NS##_adapter {                                                                          \
+#include <Eigen/Core>
+
+#include <cmath>
+#include <random>
+
+#define MRQP_MODEL_TRAITS(NS)                                                                    \
+  struct NS##_model {                                                                            \
     static constexpr int nq = NS::nq, nv = NS::nv, nbodies = NS::nbodies, nframes = NS::nframes; \
+    static constexpr int njoints = NS::njoints, nparams = NS::nparams;                           \
     static constexpr bool floating_base = NS::floating_base;                                     \
     using Data = NS::Data;                                                                       \
     using ConfigVector = NS::ConfigVector;                                                       \
@@ -58,3 +66,34 @@
     }                                                                                            \
     static void params(ParamVector& p) { NS::inertialParameters(p); }                            \
   }
+
+namespace mrqp::model {
+
+/// A configuration drawn uniformly within the joint limits (±3 where a joint is unlimited); a
+/// floating base gets a position in [−1, 1]³ and a uniformly random unit quaternion.
+template <class M, class Rng>
+typename M::ConfigVector sampleConfiguration(Rng& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> n(0.0, 1.0);
+  typename M::ConfigVector q;
+  M::neutral(q);
+  int first = 0;
+  if (M::floating_base) {
+    for (int i = 0; i < 3; ++i) q(i) = u(rng);
+    Eigen::Vector4d quat(n(rng), n(rng), n(rng), n(rng));
+    quat.normalize();
+    for (int i = 0; i < 4; ++i) q(3 + i) = quat(i);
+    first = 7;
+  }
+  for (int i = first; i < M::nq; ++i) {
+    double lo = M::qLower()[i], hi = M::qUpper()[i];
+    if (!std::isfinite(lo) || !std::isfinite(hi)) {
+      lo = -3.0;
+      hi = 3.0;
+    }
+    q(i) = lo + (hi - lo) * 0.5 * (u(rng) + 1.0);
+  }
+  return q;
+}
+
+}  // namespace mrqp::model
