@@ -3,15 +3,15 @@
 // Which faces a new point sees is decided by the exact sign of the orientation
 // determinant (a floating-point filter, then exact expansion arithmetic when the filter is
 // inconclusive), so every step keeps the triangulated surface exactly convex and closed,
-// whatever the rounding. Faces the new point is coplanar with count as seen (replaced), so
-// points in the middle of a hull facet or edge never stay vertices. The tolerance only
-// decides which points are worth adding: a point within tol of the current hull is
-// considered inside.
+// whatever the rounding. The tolerance only decides which points are worth adding: a point
+// within tol of the current hull is considered inside. Vertices that end up inside a hull
+// facet or edge are removed afterwards (exact test), by rebuilding from the corners.
 #include "convex_hull.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -22,6 +22,15 @@ namespace mrqp::gen {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
+
+// Fixed-order arithmetic for every rounded quantity that steers a decision: Eigen may
+// vectorise reductions differently from one build to another, and the hull of given points
+// must not depend on how the library was compiled.
+double dot3(const Vec3& a, const Vec3& b) { return a.x() * b.x() + a.y() * b.y() + a.z() * b.z(); }
+Vec3 cross3(const Vec3& a, const Vec3& b) {
+  return Vec3(a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x());
+}
+double norm3(const Vec3& a) { return std::sqrt(dot3(a, a)); }
 
 // ---- exact orientation ----------------------------------------------------------------
 
@@ -39,21 +48,22 @@ void twoProduct(double a, double b, double& p, double& e) {
   e = std::fma(a, b, -p);
 }
 
-// A sum of doubles held exactly as non-overlapping components of increasing magnitude.
+// A sum of doubles held exactly as non-overlapping components of increasing magnitude
+// (Shewchuk's expansions). Holds up to kMax components, enough for the sums below.
 class Expansion {
  public:
   void add(double b) {
     double q = b;
     std::size_t k = 0;
-    for (const double c : parts_) {
+    for (std::size_t j = 0; j < size_; ++j) {
       double s = 0.0;
       double e = 0.0;
-      twoSum(q, c, s, e);
+      twoSum(q, parts_[j], s, e);
       if (e != 0.0) parts_[k++] = e;
       q = s;
     }
-    parts_.resize(k);
-    if (q != 0.0) parts_.push_back(q);
+    size_ = k;
+    if (q != 0.0) parts_[size_++] = q;
   }
 
   // Adds sign * a * b * c exactly.
@@ -64,18 +74,22 @@ class Expansion {
     double p = 0.0;
     double e = 0.0;
     twoProduct(h, c, p, e);
-    add(sign * p);
     add(sign * e);
-    twoProduct(l, c, p, e);
     add(sign * p);
-    add(sign * e);
+    if (l != 0.0) {
+      twoProduct(l, c, p, e);
+      add(sign * e);
+      add(sign * p);
+    }
   }
 
   // The largest component dominates the sum of the others.
-  int sign() const { return parts_.empty() ? 0 : (parts_.back() > 0.0 ? 1 : -1); }
+  int sign() const { return size_ == 0 ? 0 : (parts_[size_ - 1] > 0.0 ? 1 : -1); }
 
  private:
-  std::vector<double> parts_;
+  static constexpr std::size_t kMax = 100;  // at most 96 components are ever added
+  std::array<double, kMax> parts_{};
+  std::size_t size_ = 0;
 };
 
 // Exactly adds sign * det[p; q; r] (rows).
@@ -86,6 +100,17 @@ void addDeterminant(Expansion& x, double sign, const Vec3& p, const Vec3& q, con
   x.addProduct(sign, p.y(), q.z(), r.x());
   x.addProduct(sign, p.z(), q.x(), r.y());
   x.addProduct(-sign, p.z(), q.y(), r.x());
+}
+
+// Whether b - a was computed without rounding, component-wise.
+bool exactDifference(const Vec3& a, const Vec3& b, const Vec3& diff) {
+  for (int k = 0; k < 3; ++k) {
+    double s = 0.0;
+    double e = 0.0;
+    twoSum(b[k], -a[k], s, e);
+    if (e != 0.0 || s != diff[k]) return false;
+  }
+  return true;
 }
 
 // Sign of det[b - a; c - a; d - a] = ((b - a) x (c - a)) . (d - a): positive when d is
@@ -109,12 +134,16 @@ int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   if (det > bound) return 1;
   if (det < -bound) return -1;
   if (!std::isfinite(permanent) || permanent > 1e250) return det > 0.0 ? 1 : (det < 0.0 ? -1 : 0);
-  // Exact: det[b - a; c - a; d - a] = D(b,c,d) - D(a,c,d) + D(a,b,d) - D(a,b,c).
   Expansion x;
-  addDeterminant(x, 1.0, b, c, d);
-  addDeterminant(x, -1.0, a, c, d);
-  addDeterminant(x, 1.0, a, b, d);
-  addDeterminant(x, -1.0, a, b, c);
+  if (exactDifference(a, b, u) && exactDifference(a, c, v) && exactDifference(a, d, w)) {
+    addDeterminant(x, 1.0, u, v, w);  // common for nearby points: 6 products
+  } else {
+    // det[b - a; c - a; d - a] = D(b,c,d) - D(a,c,d) + D(a,b,d) - D(a,b,c): 24 products.
+    addDeterminant(x, 1.0, b, c, d);
+    addDeterminant(x, -1.0, a, c, d);
+    addDeterminant(x, 1.0, a, b, d);
+    addDeterminant(x, -1.0, a, b, c);
+  }
   return x.sign();
 }
 
@@ -167,7 +196,9 @@ struct HorizonEdge {
 // Quickhull over an array of distinct points; indices refer to that array.
 class Quickhull {
  public:
-  Quickhull(const std::vector<Vec3>& p, double tol) : p_(p), tol_(tol) {}
+  // `extent`: the largest side of the points' bounding box.
+  Quickhull(const std::vector<Vec3>& p, double tol, double extent)
+      : p_(p), tol_(tol), distErr_(64.0 * std::numeric_limits<double>::epsilon() * extent) {}
 
   // Builds the hull from the tetrahedron `s` (not flat). With exact orientations a step
   // cannot fail; should one anyway (a defect), it returns false, or with `skipFailures`
@@ -217,7 +248,7 @@ class Quickhull {
       });
       const int eye = *far;
       if (orientation(pt(vtx(f, 0)), pt(vtx(f, 1)), pt(vtx(f, 2)), pt(eye)) <= 0) {
-        out.erase(far);  // not really above the face (rounded distance): inside
+        out.erase(far);  // rounding beyond any sane bound; never seen, dropped to be safe
         continue;
       }
       std::vector<int> created;
@@ -262,13 +293,13 @@ class Quickhull {
   const Face& face(int f) const { return faces_[static_cast<std::size_t>(f)]; }
   int vtx(int f, int e) const { return face(f).v[static_cast<std::size_t>(e % 3)]; }
   const Vec3& pt(int i) const { return p_[static_cast<std::size_t>(i)]; }
-  double distance(int f, int i) const { return face(f).n.dot(pt(i) - pt(face(f).v[0])); }
+  double distance(int f, int i) const { return dot3(face(f).n, pt(i) - pt(face(f).v[0])); }
 
   void addFace(const std::array<int, 3>& v) {
     Face f;
     f.v = v;
     const Vec3 n = accurateNormal(pt(v[0]), pt(v[1]), pt(v[2]));
-    const double len = n.norm();
+    const double len = norm3(n);
     // Never zero for a face whose plane misses a point (exact orientation), barring underflow.
     f.n = len > 0.0 ? Vec3(n / len) : Vec3::Zero();
     faces_.push_back(std::move(f));
@@ -276,9 +307,8 @@ class Quickhull {
 
   // Gives each point that is outside the faces `targets` to one of them, and drops the
   // others as inside. A point is outside when it is more than tol above a face plane, or
-  // exactly above a face yet not within tol of it: a point barely above a face plane but
-  // beyond the face's edges (as happens next to nearly flat parts of the hull) can be far
-  // from the hull, so it is only dropped when it lies over the face itself.
+  // exactly above a face and more than tol from that face's triangle: next to nearly flat
+  // parts of the hull a point can be barely above a face plane yet far from the hull.
   void assignOutside(const std::vector<int>& points, const std::vector<int>& targets) {
     for (const int i : points) {
       int best = -1;
@@ -300,11 +330,11 @@ class Quickhull {
       bool near = false;
       for (const int f : targets) {
         const double dist = distance(f, i);
-        if (dist < -tol_) continue;  // clearly below
+        if (dist < -distErr_) continue;  // below, whatever the rounding
         const Face& fc = face(f);
         if (orientation(pt(fc.v[0]), pt(fc.v[1]), pt(fc.v[2]), pt(i)) <= 0) continue;
-        if (overFace(f, i)) {
-          near = true;  // within tol of the face itself
+        if (triangleDistance(f, i) <= tol_) {
+          near = true;  // within tol of the hull
           break;
         }
         if (dist > aboveDist) {
@@ -316,16 +346,21 @@ class Quickhull {
     }
   }
 
-  // Whether point i projects onto the triangle of face f.
-  bool overFace(int f, int i) const {
+  // Distance from point i to the triangle of face f.
+  double triangleDistance(int f, int i) const {
     const Face& fc = face(f);
     const Vec3& p = pt(i);
+    bool over = true;
+    double edge = std::numeric_limits<double>::infinity();
     for (int e = 0; e < 3; ++e) {
       const Vec3& a = pt(fc.v[static_cast<std::size_t>(e)]);
       const Vec3& b = pt(fc.v[static_cast<std::size_t>((e + 1) % 3)]);
-      if ((b - a).cross(p - a).dot(fc.n) < 0.0) return false;
+      const Vec3 ab = b - a;
+      if (dot3(cross3(ab, p - a), fc.n) < 0.0) over = false;
+      const double t = std::clamp(dot3(ab, p - a) / dot3(ab, ab), 0.0, 1.0);
+      edge = std::min(edge, norm3(p - (a + t * ab)));
     }
-    return true;
+    return over ? std::abs(distance(f, i)) : edge;
   }
 
   // Adds point `eye`, strictly above face `start`. On failure nothing is changed.
@@ -338,8 +373,8 @@ class Quickhull {
         if (g < 0 || !face(g).alive) return false;
         Face& fg = face(g);
         if (fg.visibleMark == mark_ || fg.hiddenMark == mark_) continue;
-        if (orientation(pt(fg.v[0]), pt(fg.v[1]), pt(fg.v[2]), pt(eye)) >= 0) {
-          fg.visibleMark = mark_;  // above or coplanar: replaced
+        if (orientation(pt(fg.v[0]), pt(fg.v[1]), pt(fg.v[2]), pt(eye)) > 0) {
+          fg.visibleMark = mark_;
           visible.push_back(g);
         } else {
           fg.hiddenMark = mark_;
@@ -411,20 +446,21 @@ class Quickhull {
 
   const std::vector<Vec3>& p_;
   double tol_;
+  double distErr_;  // bound on the rounding error of distance()
   std::vector<Face> faces_;
   unsigned mark_ = 0;
 };
 
 double lineDistance(const Vec3& p, const Vec3& a, const Vec3& dir) {
   const Vec3 ap = p - a;
-  return (ap - ap.dot(dir) * dir).norm();
+  return norm3(ap - dot3(ap, dir) * dir);
 }
 
 // Extreme points of points lying (within tol) in the plane through `origin` with unit
 // normal `n`, in counter-clockwise order around n (Andrew's monotone chain).
 std::vector<int> planarHull(const std::vector<Vec3>& p, const Vec3& origin, const Vec3& axisU,
                             const Vec3& n, double tol) {
-  const Vec3 axisV = n.cross(axisU);
+  const Vec3 axisV = cross3(n, axisU);
   struct P2 {
     double x;
     double y;
@@ -434,7 +470,7 @@ std::vector<int> planarHull(const std::vector<Vec3>& p, const Vec3& origin, cons
   q.reserve(p.size());
   for (int i = 0; i < static_cast<int>(p.size()); ++i) {
     const Vec3 r = p[static_cast<std::size_t>(i)] - origin;
-    q.push_back({r.dot(axisU), r.dot(axisV), i});
+    q.push_back({dot3(r, axisU), dot3(r, axisV), i});
   }
   std::sort(q.begin(), q.end(), [](const P2& a, const P2& b) {
     return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.i < b.i)));
@@ -462,11 +498,135 @@ std::vector<int> planarHull(const std::vector<Vec3>& p, const Vec3& origin, cons
   std::vector<int> out;
   for (const P2& c : h) {
     const bool dup = std::any_of(out.begin(), out.end(), [&](int i) {
-      return (p[static_cast<std::size_t>(i)] - p[static_cast<std::size_t>(c.i)]).norm() <= tol;
+      return norm3(p[static_cast<std::size_t>(i)] - p[static_cast<std::size_t>(c.i)]) <= tol;
     });
     if (!dup) out.push_back(c.i);
   }
   return out;
+}
+
+ConvexHull hullOfDistinct(const std::vector<Vec3>& p, double tol, double extent) {
+  ConvexHull hull;
+  if (p.empty()) return hull;
+  const int n = static_cast<int>(p.size());
+  auto P = [&](int i) -> const Vec3& { return p[static_cast<std::size_t>(i)]; };
+
+  // Initial simplex. The two farthest apart of the six axis-extreme points...
+  std::array<int, 6> ext{};
+  for (int axis = 0; axis < 3; ++axis) {
+    int mn = 0;
+    int mx = 0;
+    for (int i = 1; i < n; ++i) {
+      if (P(i)[axis] < P(mn)[axis]) mn = i;
+      if (P(i)[axis] > P(mx)[axis]) mx = i;
+    }
+    ext[static_cast<std::size_t>(2 * axis)] = mn;
+    ext[static_cast<std::size_t>(2 * axis + 1)] = mx;
+  }
+  int i0 = 0;
+  int i1 = 0;
+  double best = -1.0;
+  for (const int a : ext) {
+    for (const int b : ext) {
+      const double d = dot3(P(a) - P(b), P(a) - P(b));
+      if (d > best) {
+        best = d;
+        i0 = std::min(a, b);
+        i1 = std::max(a, b);
+      }
+    }
+  }
+  if (std::sqrt(best) <= tol) {  // a single point
+    hull.vertices.push_back(P(0));
+    return hull;
+  }
+  const Vec3 dir = (P(i1) - P(i0)) / norm3(P(i1) - P(i0));
+  // ...then the point farthest from their line...
+  int i2 = -1;
+  best = tol;
+  for (int i = 0; i < n; ++i) {
+    const double d = lineDistance(P(i), P(i0), dir);
+    if (d > best) {
+      best = d;
+      i2 = i;
+    }
+  }
+  if (i2 < 0) {  // collinear: the extremes along the line
+    int mn = 0;
+    int mx = 0;
+    for (int i = 1; i < n; ++i) {
+      if (dot3(P(i), dir) < dot3(P(mn), dir)) mn = i;
+      if (dot3(P(i), dir) > dot3(P(mx), dir)) mx = i;
+    }
+    hull.vertices = {P(std::min(mn, mx)), P(std::max(mn, mx))};
+    return hull;
+  }
+  // ...and the point farthest from their plane.
+  const Vec3 n012 = accurateNormal(P(i0), P(i1), P(i2));
+  const Vec3 normal = n012 / norm3(n012);
+  int i3 = -1;
+  best = tol;
+  for (int i = 0; i < n; ++i) {
+    const double d = std::abs(dot3(normal, P(i) - P(i0)));
+    if (d > best) {
+      best = d;
+      i3 = i;
+    }
+  }
+  if (i3 < 0) {  // coplanar: the planar hull's vertices
+    for (const int i : planarHull(p, P(i0), dir, normal, tol)) hull.vertices.push_back(P(i));
+    return hull;
+  }
+
+  Quickhull qh(p, tol, extent);
+  if (qh.build({i0, i1, i2, i3}, false)) return qh.result();
+  // Not expected (exact orientations keep every step consistent); be safe regardless.
+  Quickhull fallback(p, tol, extent);
+  fallback.build({i0, i1, i2, i3}, true);
+  return fallback.result();
+}
+
+// For each vertex of a closed convex triangulated surface, whether it is a corner: its
+// faces lie in at least three distinct planes (exact test). A vertex whose faces lie in
+// one or two planes is inside a facet or an edge of the polytope.
+std::vector<bool> extremeVertices(const ConvexHull& h) {
+  const std::size_t nv = h.vertices.size();
+  // Faces around each vertex, as offsets into one array.
+  std::vector<std::size_t> start(nv + 1, 0);
+  for (const auto& f : h.faces) {
+    for (const int v : f) ++start[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::size_t> incident(start[nv]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t f = 0; f < h.faces.size(); ++f) {
+    for (const int v : h.faces[f]) incident[fill[static_cast<std::size_t>(v)]++] = f;
+  }
+  auto vertex = [&](std::size_t f, std::size_t k) -> const Vec3& {
+    return h.vertices[static_cast<std::size_t>(h.faces[f][k])];
+  };
+  // Whether face g lies in the plane of face f (their shared vertices trivially do).
+  auto coplanar = [&](std::size_t f, std::size_t g) {
+    const auto& fv = h.faces[f];
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (std::find(fv.begin(), fv.end(), h.faces[g][k]) != fv.end()) continue;
+      if (orientation(vertex(f, 0), vertex(f, 1), vertex(f, 2), vertex(g, k)) != 0) return false;
+    }
+    return true;
+  };
+  std::vector<bool> extreme(nv, false);
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::array<std::size_t, 3> planes{};
+    std::size_t count = 0;
+    for (std::size_t k = start[v]; k < start[v + 1] && count < 3; ++k) {
+      const std::size_t f = incident[k];
+      bool known = false;
+      for (std::size_t j = 0; j < count && !known; ++j) known = coplanar(planes[j], f);
+      if (!known) planes[count++] = f;
+    }
+    extreme[v] = count >= 3;
+  }
+  return extreme;
 }
 
 }  // namespace
@@ -491,8 +651,7 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points, double eps) {
   p.reserve(order.size());
   for (const int i : order) p.push_back(at(i));
 
-  ConvexHull hull;
-  if (p.empty()) return hull;
+  if (p.empty()) return {};
 
   Vec3 lo = p[0];
   Vec3 hi = p[0];
@@ -503,81 +662,19 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points, double eps) {
   const double extent = (hi - lo).maxCoeff();
   const double eps0 = std::isfinite(eps) ? std::max(eps, 0.0) : 0.0;
   const double tol = std::max(eps0, 4.0 * std::numeric_limits<double>::epsilon()) * extent;
-  const int n = static_cast<int>(p.size());
-  auto P = [&](int i) -> const Vec3& { return p[static_cast<std::size_t>(i)]; };
 
-  // Initial simplex. The two farthest apart of the six axis-extreme points...
-  std::array<int, 6> ext{};
-  for (int axis = 0; axis < 3; ++axis) {
-    int mn = 0;
-    int mx = 0;
-    for (int i = 1; i < n; ++i) {
-      if (P(i)[axis] < P(mn)[axis]) mn = i;
-      if (P(i)[axis] > P(mx)[axis]) mx = i;
-    }
-    ext[static_cast<std::size_t>(2 * axis)] = mn;
-    ext[static_cast<std::size_t>(2 * axis + 1)] = mx;
+  ConvexHull hull = hullOfDistinct(p, tol, extent);
+  if (hull.faces.empty()) return hull;
+  // Quickhull keeps a point that became a vertex while outside even if later points put it
+  // in the middle of a hull facet or edge. Such vertices are found exactly and the hull is
+  // rebuilt from the extreme points alone (the same polytope).
+  const std::vector<bool> extreme = extremeVertices(hull);
+  if (std::all_of(extreme.begin(), extreme.end(), [](bool e) { return e; })) return hull;
+  std::vector<Vec3> corners;
+  for (std::size_t i = 0; i < extreme.size(); ++i) {
+    if (extreme[i]) corners.push_back(hull.vertices[i]);
   }
-  int i0 = 0;
-  int i1 = 0;
-  double best = -1.0;
-  for (const int a : ext) {
-    for (const int b : ext) {
-      const double d = (P(a) - P(b)).squaredNorm();
-      if (d > best) {
-        best = d;
-        i0 = std::min(a, b);
-        i1 = std::max(a, b);
-      }
-    }
-  }
-  if (std::sqrt(best) <= tol) {  // a single point
-    hull.vertices.push_back(P(0));
-    return hull;
-  }
-  const Vec3 dir = (P(i1) - P(i0)).normalized();
-  // ...then the point farthest from their line...
-  int i2 = -1;
-  best = tol;
-  for (int i = 0; i < n; ++i) {
-    const double d = lineDistance(P(i), P(i0), dir);
-    if (d > best) {
-      best = d;
-      i2 = i;
-    }
-  }
-  if (i2 < 0) {  // collinear: the extremes along the line
-    int mn = 0;
-    int mx = 0;
-    for (int i = 1; i < n; ++i) {
-      if (P(i).dot(dir) < P(mn).dot(dir)) mn = i;
-      if (P(i).dot(dir) > P(mx).dot(dir)) mx = i;
-    }
-    hull.vertices = {P(std::min(mn, mx)), P(std::max(mn, mx))};
-    return hull;
-  }
-  // ...and the point farthest from their plane.
-  const Vec3 normal = accurateNormal(P(i0), P(i1), P(i2)).normalized();
-  int i3 = -1;
-  best = tol;
-  for (int i = 0; i < n; ++i) {
-    const double d = std::abs(normal.dot(P(i) - P(i0)));
-    if (d > best) {
-      best = d;
-      i3 = i;
-    }
-  }
-  if (i3 < 0) {  // coplanar: the planar hull's vertices
-    for (const int i : planarHull(p, P(i0), dir, normal, tol)) hull.vertices.push_back(P(i));
-    return hull;
-  }
-
-  Quickhull qh(p, tol);
-  if (qh.build({i0, i1, i2, i3}, false)) return qh.result();
-  // Not expected (exact orientations keep every step consistent); be safe regardless.
-  Quickhull fallback(p, tol);
-  fallback.build({i0, i1, i2, i3}, true);
-  return fallback.result();
+  return hullOfDistinct(corners, tol, extent);
 }
 
 }  // namespace mrqp::gen

@@ -19,15 +19,18 @@ struct ConvexHull {
   std::vector<std::array<int, 3>> faces;
 };
 
-// Convex hull of `points` (quickhull with exact orientation tests, so the result is a
-// closed, exactly convex triangulated surface whatever the rounding).
+// Convex hull of `points`: quickhull with exact orientation tests (floating-point filter,
+// exact expansion arithmetic when it is inconclusive), so the result is a closed, exactly
+// convex triangulated surface whatever the rounding. The result depends only on the input,
+// not on the build (fixed-order arithmetic, no FMA contraction).
 //
 // `eps` is a distance tolerance relative to the size of the input: tol = eps * (largest
 // side of the axis-aligned bounding box), clamped below to a few machine epsilons. A point
-// within tol of the hull built so far is treated as inside and never becomes a vertex, so
-// every input point ends up inside the hull or at most about tol outside a face plane.
-// Points exactly on a hull facet or edge (e.g. a grid on a cube's faces) never remain
-// vertices: the result's vertices are extreme points.
+// within tol of the hull built so far is treated as inside and does not become a vertex,
+// so every input point ends up inside the hull or within about tol of it. Every vertex is
+// an extreme point: points on a hull facet or edge (e.g. a grid on a cube's faces) are
+// never vertices. Near-degenerate input (points a few tol apart) may give a hull whose own
+// hull drops a few more vertices; on well-separated points the hull is idempotent.
 //
 // Degenerate input never crashes and returns no faces:
 //   - no finite points                 -> no vertices;

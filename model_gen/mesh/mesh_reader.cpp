@@ -1,8 +1,7 @@
 #include "mesh_reader.hpp"
 
-#include <Eigen/Geometry>
-
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -128,6 +127,67 @@ class VertexSet {
   };
   std::unordered_set<Key, KeyHash> seen_;
   std::vector<Eigen::Vector3d> points_;
+};
+
+// ---- 4x4 transforms -------------------------------------------------------------------
+
+// Row-major affine transforms, multiplied in a fixed order so that the vertices read do not
+// depend on how the library was compiled (Eigen may vectorise products differently).
+struct Mat4 {
+  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  double& operator()(int r, int c) { return m[static_cast<std::size_t>(4 * r + c)]; }
+  double operator()(int r, int c) const { return m[static_cast<std::size_t>(4 * r + c)]; }
+
+  Mat4 operator*(const Mat4& o) const {
+    Mat4 p;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        p(r, c) = (*this)(r, 0) * o(0, c) + (*this)(r, 1) * o(1, c) + (*this)(r, 2) * o(2, c) +
+                  (*this)(r, 3) * o(3, c);
+      }
+    }
+    return p;
+  }
+
+  // The affine part applied to a point (a projective bottom row is ignored).
+  Eigen::Vector3d apply(const Eigen::Vector3d& x) const {
+    Eigen::Vector3d y;
+    for (int r = 0; r < 3; ++r) {
+      y[r] = (*this)(r, 0) * x[0] + (*this)(r, 1) * x[1] + (*this)(r, 2) * x[2] + (*this)(r, 3);
+    }
+    return y;
+  }
+
+  static Mat4 rowMajor(const std::vector<double>& v) {
+    Mat4 t;
+    std::copy(v.begin(), v.begin() + 16, t.m.begin());
+    return t;
+  }
+
+  // Rotation by `degrees` about (x, y, z) (need not be unit; zero gives the identity).
+  static Mat4 rotation(double x, double y, double z, double degrees) {
+    Mat4 t;
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if (!(len > 0.0)) return t;
+    x /= len;
+    y /= len;
+    z /= len;
+    constexpr double kPi = 3.14159265358979323846;
+    const double a = degrees * kPi / 180.0;
+    const double c = std::cos(a);
+    const double s = std::sin(a);
+    const double k = 1.0 - c;
+    t(0, 0) = c + x * x * k;
+    t(0, 1) = x * y * k - z * s;
+    t(0, 2) = x * z * k + y * s;
+    t(1, 0) = y * x * k + z * s;
+    t(1, 1) = c + y * y * k;
+    t(1, 2) = y * z * k - x * s;
+    t(2, 0) = z * x * k - y * s;
+    t(2, 1) = z * y * k + x * s;
+    t(2, 2) = c + z * z * k;
+    return t;
+  }
 };
 
 // ---- STL ------------------------------------------------------------------------------
@@ -554,20 +614,19 @@ class ColladaReader {
 
     if (const auto scene = visualScene()) {
       for (const std::size_t c : doc_[*scene].children) {
-        if (doc_[c].name == "node") visitNode(c, Eigen::Matrix4d::Identity(), 0, out);
+        if (doc_[c].name == "node") visitNode(c, Mat4{}, 0, out);
       }
     }
     if (instanced_ == 0) {  // no scene, or it instantiates no mesh: every mesh as stored
       for (std::size_t i = 0; i < doc_.size(); ++i) {
         if (doc_[i].name != "geometry") continue;
-        if (const auto mesh = child(i, "mesh")) addMesh(*mesh, Eigen::Matrix4d::Identity(), out);
+        if (const auto mesh = child(i, "mesh")) addMesh(*mesh, Mat4{}, out);
       }
     }
   }
 
  private:
   static constexpr int kMaxNodeDepth = 256;
-  static constexpr double kPi = 3.14159265358979323846;
 
   std::optional<std::size_t> child(std::size_t parent, std::string_view name) const {
     for (const std::size_t c : doc_[parent].children) {
@@ -640,29 +699,26 @@ class ColladaReader {
     return std::nullopt;
   }
 
-  Eigen::Matrix4d localTransform(std::size_t node) const {
-    Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+  Mat4 localTransform(std::size_t node) const {
+    Mat4 t;
     for (const std::size_t c : doc_[node].children) {
       const std::string& n = doc_[c].name;
-      Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+      Mat4 m;
       if (n == "matrix") {
-        const std::vector<double> v = numbers(c, 16, node);
-        for (int r = 0; r < 4; ++r) {
-          for (int k = 0; k < 4; ++k) m(r, k) = v[static_cast<std::size_t>(4 * r + k)];
-        }
+        m = Mat4::rowMajor(numbers(c, 16, node));
       } else if (n == "translate") {
         const std::vector<double> v = numbers(c, 3, node);
-        m.topRightCorner<3, 1>() = Eigen::Vector3d(v[0], v[1], v[2]);
+        m(0, 3) = v[0];
+        m(1, 3) = v[1];
+        m(2, 3) = v[2];
       } else if (n == "rotate") {
         const std::vector<double> v = numbers(c, 4, node);
-        const Eigen::Vector3d axis(v[0], v[1], v[2]);
-        if (axis.norm() > 0.0) {
-          const double angle = v[3] * kPi / 180.0;
-          m.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-        }
+        m = Mat4::rotation(v[0], v[1], v[2], v[3]);
       } else if (n == "scale") {
         const std::vector<double> v = numbers(c, 3, node);
-        m.diagonal().head<3>() = Eigen::Vector3d(v[0], v[1], v[2]);
+        m(0, 0) = v[0];
+        m(1, 1) = v[1];
+        m(2, 2) = v[2];
       } else if (n == "lookat" || n == "skew") {
         fail("unsupported COLLADA: <" + n + "> transform in " + describe(node));
       } else {
@@ -673,12 +729,12 @@ class ColladaReader {
     return t;
   }
 
-  void visitNode(std::size_t node, const Eigen::Matrix4d& parent, int depth, VertexSet& out) {
+  void visitNode(std::size_t node, const Mat4& parent, int depth, VertexSet& out) {
     if (depth > kMaxNodeDepth) {
       fail("unsupported COLLADA: nodes nested deeper than " + std::to_string(kMaxNodeDepth) +
            " (an <instance_node> cycle?) at " + describe(node));
     }
-    const Eigen::Matrix4d t = parent * localTransform(node);
+    const Mat4 t = parent * localTransform(node);
     for (const std::size_t c : doc_[node].children) {
       const std::string& n = doc_[c].name;
       if (n == "node") {
@@ -693,19 +749,14 @@ class ColladaReader {
         const auto skin = child(controller, "skin");
         if (!skin) continue;  // morph controllers are not read
         const std::size_t geometry = resolve(*skin, "source", "geometry");
-        Eigen::Matrix4d bind = Eigen::Matrix4d::Identity();
-        if (const auto bsm = child(*skin, "bind_shape_matrix")) {
-          const std::vector<double> v = numbers(*bsm, 16, *skin);
-          for (int r = 0; r < 4; ++r) {
-            for (int k = 0; k < 4; ++k) bind(r, k) = v[static_cast<std::size_t>(4 * r + k)];
-          }
-        }
+        Mat4 bind;
+        if (const auto bsm = child(*skin, "bind_shape_matrix")) bind = Mat4::rowMajor(numbers(*bsm, 16, *skin));
         if (const auto mesh = child(geometry, "mesh")) addMesh(*mesh, t * bind, out);
       }
     }
   }
 
-  void addMesh(std::size_t mesh, const Eigen::Matrix4d& t, VertexSet& out) {
+  void addMesh(std::size_t mesh, const Mat4& t, VertexSet& out) {
     const std::size_t geometry = doc_[mesh].parent;
     const std::string where = "the <mesh> of " + describe(geometry);
     const auto vertices = child(mesh, "vertices");
@@ -748,7 +799,7 @@ class ColladaReader {
     for (std::size_t p = 0; p < count; ++p) {
       const std::size_t b = offset + p * stride;
       const Eigen::Vector3d x(values[b], values[b + 1], values[b + 2]);
-      const Eigen::Vector3d y = unit_ * (t.topLeftCorner<3, 3>() * x + t.topRightCorner<3, 1>());
+      const Eigen::Vector3d y = unit_ * t.apply(x);
       if (!y.allFinite()) fail("malformed COLLADA: non-finite transformed vertex in " + where);
       out.add(y);
     }

@@ -13,21 +13,24 @@
 //   .dae  COLLADA 1.4/1.5, read by a minimal XML reader (no external library). The vertex
 //         positions of each <geometry><mesh> are the <float_array> of the <source> named
 //         by <vertices><input semantic="POSITION" source="#..."/>, read through its
-//         <accessor> (count, stride, offset). If the document has a visual scene (the one
-//         named by <scene><instance_visual_scene>, else the first one), the meshes it
+//         <accessor> (count, stride, offset) -- all of them, used by a primitive
+//         (<triangles>, <polylist>, ...) or not. If the document has a visual scene (the
+//         one named by <scene><instance_visual_scene>, else the first one), the meshes it
 //         instantiates are transformed by their node chain (<matrix>, <translate>,
 //         <rotate>, <scale>; <instance_node> and <instance_controller> with the skin's
 //         bind_shape_matrix are followed) and only those meshes are returned; without a
 //         scene, or if it instantiates no mesh, every mesh is returned untransformed.
-//         <asset><unit meter="..."/> is applied (positions are returned in metres).
-//         Limitations: <up_axis> is ignored on purpose, as RViz, MoveIt and the other ROS
-//         tools do (a URDF mesh is used in its own frame); <lookat> and <skew> node
+//         <asset><unit meter="..."/> is applied (positions are returned in metres), as the
+//         COLLADA specification and current RViz do (some older ROS tools ignored it).
+//         Limitations: <up_axis> is ignored on purpose, as RViz and the ROS tools built on
+//         Assimp do (a URDF mesh is used in its own frame); <lookat> and <skew> node
 //         transforms are rejected with an error; <convex_mesh>, <spline>, morph
 //         controllers and external document references (url="file.dae#id") are not read.
 //
 // Vertices are returned as distinct positions (exact duplicates, e.g. the shared corners
 // of STL facets, are removed), in order of first appearance. Non-finite coordinates are
-// an error.
+// an error. URDF <mesh scale="..."> is not applied here: multiply the vertices by it.
+// Transforms use fixed-order arithmetic, so the result does not depend on the build.
 #pragma once
 
 #include <Eigen/Core>
@@ -45,7 +48,8 @@ struct MeshReadResult {
   //   "truncated binary STL: ...", "binary STL size mismatch: ...",
   //   "malformed ASCII STL: ...", "truncated ASCII STL: ...",
   //   "malformed OBJ: ...", "malformed XML: ...", "malformed COLLADA: ...",
-  //   "unsupported COLLADA: ...", "no vertices".
+  //   "unsupported COLLADA: ...", "no vertices". Text formats name the offending line
+  //   ("... at line 12"); binary STL errors give the declared and actual sizes.
   std::string error;
   std::vector<Eigen::Vector3d> vertices;
 };

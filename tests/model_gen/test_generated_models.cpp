@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "gen_door.hpp"
 #include "gen_human.hpp"
@@ -165,6 +166,34 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
       M::nle(*d, q, zero, N0);
       const double lhs = v.dot(Mdot * v), rhs = 2.0 * v.dot(N - N0);
       CHECK(std::abs(lhs - rhs) < 1e-5 * std::max(1.0, std::abs(rhs)));
+    }
+
+    // Fixed base (q and v are the same coordinates): C from the Christoffel symbols of ∂M/∂q
+    // (central differences) reproduces N(q, v) − N(q, 0), and Ṁ − 2C is skew-symmetric.
+    if (!M::floating_base) {
+      const double h = 1e-6;
+      std::vector<MatrixXd> dM(M::nv);
+      auto Mp = std::make_unique<typename M::MassMatrix>();
+      auto Mn = std::make_unique<typename M::MassMatrix>();
+      for (int k = 0; k < M::nv; ++k) {
+        typename M::ConfigVector qp = q, qm = q;
+        qp(k) += h;
+        qm(k) -= h;
+        M::crba(*dm, qp, *Mp);
+        M::crba(*dm, qm, *Mn);
+        dM[k] = (*Mp - *Mn) / (2 * h);
+      }
+      MatrixXd C = MatrixXd::Zero(M::nv, M::nv), Mdot = MatrixXd::Zero(M::nv, M::nv);
+      for (int k = 0; k < M::nv; ++k) Mdot += dM[k] * v(k);
+      for (int i = 0; i < M::nv; ++i)
+        for (int j = 0; j < M::nv; ++j)
+          for (int k = 0; k < M::nv; ++k) C(i, j) += 0.5 * (dM[k](i, j) + dM[j](i, k) - dM[i](j, k)) * v(k);
+      typename M::TangentVector zero = M::TangentVector::Zero(), g;
+      M::nle(*d, q, zero, g);
+      const double cs = std::max(1.0, maxAbs(Mdot));
+      CHECK(maxAbs(C * v - (N - g)) < 1e-5 * std::max(1.0, maxAbs(N - g)));
+      const MatrixXd S = Mdot - 2.0 * C;
+      CHECK(maxAbs(S + S.transpose()) < 1e-5 * cs);
     }
 
     // kinematics: poses equal the reference's; Jacobians equal the reference's and central
