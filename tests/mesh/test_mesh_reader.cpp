@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -327,9 +329,10 @@ TEST_CASE("mesh reader: COLLADA positions are read with units and node transform
   INFO(r.error);
   REQUIRE(r.ok);
   // Millimetres to metres; the tetrahedron rotated +90 deg about z by <matrix> then raised by
-  // 500 mm; the marker scaled by 2 through <instance_node>; the unused geometry left out.
+  // 500 mm; the marker scaled by 2 then rotated +90 deg about z by <rotate>, through
+  // <instance_node>; the unused geometry left out.
   const std::vector<Vec3> want{{0, 0, 0.5}, {0, 1, 0.5}, {-1, 0, 0.5}, {0, 0, 1.5},
-                               {0.02, 0, 0}, {0, 0.02, 0}, {0, 0, 0.02}};
+                               {0, 0.02, 0}, {-0.02, 0, 0}, {0, 0, 0.02}};
   REQUIRE(near(r.vertices, want, 1e-12));
 }
 
