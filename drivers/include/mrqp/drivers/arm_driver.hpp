@@ -1,0 +1,220 @@
+// mrqp drivers -- arm drives: a CANopen (CiA 301) master for CiA 402 drives in CSP or CST.
+//
+// One ArmDriver runs any number of drives spread over one or more buses (BusRouter). It is a
+// non-blocking state machine stepped by the control cycle:
+//
+//   start()      Resetting    NMT reset node (or reset communication) per drive; wait for every
+//                             boot-up message (0x700 + node, 0x00). With reset None: NMT enter
+//                             pre-operational instead, no wait.
+//                Configuring  expedited SDO writes per drive, one in flight per drive (all drives
+//                             in parallel): producer heartbeat 0x1017, consumer heartbeat 0x1016:1
+//                             (when the master sends a heartbeat), communication cycle 0x1006,
+//                             RPDO1/TPDO1/TPDO2 mapping (disable, transmission type 1, map, enable),
+//                             TPDO3/TPDO4 disabled, modes of operation 0x6060 (CSP 8 / CST 10).
+//                Starting     NMT start per drive.
+//                Running      every cycle, per bus: one RPDO1 per drive (controlword, target
+//                             position, target torque) and then one SYNC. TPDO1 (statusword,
+//                             position, torque) and TPDO2 (velocity, error code, mode display)
+//                             are decoded when they arrive.
+//   request_enable() / request_disable() / request_quick_stop(): the controlword of each drive
+//   follows mrqp_fw_cia402_master_controlword (firmware_if), one transition per cycle, until the
+//   target state is reported by the statusword. A drive that falls into Fault is flagged and
+//   left there (target Switch on disabled) until the next request_enable(), which resets it.
+//
+// The control cycle calls, in order: BusRouter::poll(now) for each bus, update(now) (faults and
+// state machine), set_position()/set_torque(), transmit(now). Everything after create() is
+// real-time safe: no allocation, no lock, no exception, no stdio; failures are return values and
+// fault flags. Until a drive is enabled and given a setpoint, its RPDO holds its measured position
+// (raw increments) with zero torque.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrqp/drivers/bus_budget.hpp"
+#include "mrqp/drivers/bus_health.hpp"
+#include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/setpoint.hpp"
+#include "mrqp/drivers/time.hpp"
+#include "mrqp/firmware_if/arm_scale.h"
+#include "mrqp/firmware_if/cia402.h"
+#include "mrqp/firmware_if/frame.h"
+#include "mrqp/firmware_if/sdo_client.h"
+
+namespace mrqp::drivers {
+
+enum class NmtReset : std::uint8_t {
+  Node = 0,       ///< NMT reset node (0x81): application reset, wait for boot-up
+  Communication,  ///< NMT reset communication (0x82), wait for boot-up
+  None            ///< NMT enter pre-operational (0x80), no reset, no wait
+};
+
+struct ArmDriveConfig {
+  std::size_t bus = 0;      ///< index into the routers given to ArmDriver::create
+  std::uint8_t node = 1;    ///< CANopen node id 1..127
+  mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
+  std::int8_t mode = MRQP_FW_MODE_CSP;  ///< MRQP_FW_MODE_CSP or MRQP_FW_MODE_CST
+  double position_min = -std::numeric_limits<double>::infinity();  ///< rad
+  double position_max = std::numeric_limits<double>::infinity();   ///< rad
+  double torque_limit = std::numeric_limits<double>::infinity();   ///< N m, absolute
+  double velocity_limit = std::numeric_limits<double>::infinity(); ///< rad/s, feedback check only
+};
+
+struct ArmConfig {
+  std::vector<ArmDriveConfig> drives;
+  TimeNs cycle_period = milliseconds(1);     ///< control cycle (written to 0x1006)
+  bool tpdo2 = true;                         ///< map and enable TPDO2 (velocity, error code, mode)
+  bool produce_sync = true;                  ///< send one SYNC per bus and cycle
+  std::uint8_t sync_counter_overflow = 0;    ///< 0: SYNC without counter; 2..240: counter
+  NmtReset reset = NmtReset::Node;
+  std::uint16_t producer_heartbeat_ms = 100; ///< written to 0x1017; 0: no heartbeat monitoring
+  TimeNs heartbeat_timeout = milliseconds(250);  ///< consumer time of the master
+  std::uint8_t master_node = 0;              ///< != 0: send a master heartbeat as this node id
+  std::uint16_t master_heartbeat_ms = 100;
+  std::uint16_t drive_consumer_ms = 300;     ///< written to 0x1016:1 when master_node != 0
+  bool write_cycle_period = true;            ///< write 0x1006 = cycle period in microseconds
+  std::uint32_t feedback_missing_cycles = 3; ///< consecutive cycles without TPDO1 -> fault
+  TimeNs boot_timeout = seconds(5);          ///< reset -> all boot-up messages
+  TimeNs sdo_timeout = milliseconds(100);    ///< per SDO request
+  TimeNs enable_timeout = seconds(1);        ///< request -> target state reached
+};
+
+enum class ArmPhase : std::uint8_t { Idle = 0, Resetting, Configuring, Starting, Running, Failed };
+const char* arm_phase_str(ArmPhase phase) noexcept;
+
+/// What the driver knows about one drive, updated by the received frames.
+struct ArmDriveState {
+  double position = 0.0;  ///< rad
+  double velocity = 0.0;  ///< rad/s (TPDO2)
+  double torque = 0.0;    ///< N m
+  std::int32_t position_inc = 0;
+  std::int32_t velocity_inc = 0;
+  std::int16_t torque_permille = 0;
+  std::uint16_t statusword = 0;
+  mrqp_fw_cia402_state state = MRQP_FW_CIA402_UNKNOWN;
+  std::int8_t mode_display = 0;
+  std::uint16_t error_code = 0;      ///< 0x603F from TPDO2
+  std::uint8_t nmt_state = 0xFF;     ///< last heartbeat state (0xFF: none yet)
+  std::uint16_t controlword = 0;     ///< last controlword sent
+  bool valid = false;                ///< a TPDO1 has been received
+  bool fresh = false;                ///< a TPDO1 arrived since the previous update()
+  TimeNs timestamp = 0;              ///< reception time of the last TPDO1
+};
+
+class ArmDriver final : public FrameHandler {
+ public:
+  /// Validates the configuration and registers with the routers (setup; allocates). Returns
+  /// nullptr and a message naming the offending drive/field if the configuration is invalid.
+  static std::unique_ptr<ArmDriver> create(const std::vector<BusRouter*>& buses, const ArmConfig& config,
+                                           std::string* error);
+  ~ArmDriver();
+  ArmDriver(const ArmDriver&) = delete;
+  ArmDriver& operator=(const ArmDriver&) = delete;
+
+  /// Starts (or restarts) the boot sequence.
+  void start(TimeNs now) noexcept;
+  /// Moves every drive to Operation enabled (resetting faults).
+  void request_enable(TimeNs now) noexcept;
+  /// Moves every drive to Switch on disabled.
+  void request_disable(TimeNs now) noexcept;
+  /// Quick stop: Operation enabled -> Quick stop active (others to Switch on disabled).
+  void request_quick_stop(TimeNs now) noexcept;
+
+  /// After polling the buses: timeouts, state machines, fault flags of this cycle.
+  const FaultReport& update(TimeNs now) noexcept;
+  /// Setpoints for the next transmit(): target position (CSP) / target torque (CST).
+  SetpointResult set_position(std::size_t drive, double rad) noexcept;
+  SetpointResult set_torque(std::size_t drive, double nm) noexcept;
+  /// Sends this cycle's frames. Returns the number of frames queued.
+  std::size_t transmit(TimeNs now) noexcept;
+
+  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+
+  ArmPhase phase() const noexcept { return phase_; }
+  /// Every drive reports Operation enabled.
+  bool all_enabled() const noexcept;
+  /// Every drive reports Switch on disabled (or Not ready to switch on).
+  bool all_disabled() const noexcept;
+  std::size_t drive_count() const noexcept { return drives_.size(); }
+  const ArmDriveState& drive(std::size_t i) const noexcept { return drives_[i].state; }
+  const FaultReport& faults() const noexcept { return report_; }
+  /// Adds this driver's cyclic traffic on bus `bus` (index as given to create) to a budget.
+  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+
+ private:
+  struct SdoWrite {
+    std::uint16_t index;
+    std::uint8_t subindex;
+    std::uint8_t size;
+    std::uint32_t value;
+  };
+  struct Drive {
+    ArmDriveConfig cfg;
+    ArmDriveState state;
+    DeviceFaults faults;
+    std::uint32_t events = 0;            ///< flags raised since the previous update
+    std::vector<SdoWrite> writes;        ///< boot configuration
+    std::size_t write_step = 0;
+    mrqp_fw_sdo_client sdo{};
+    std::array<std::uint8_t, 4> sdo_data{};
+    bool sdo_busy = false;
+    TimeNs sdo_sent = 0;
+    mrqp_fw_frame pending{};             ///< one-shot frame waiting for the queue (NMT, SDO)
+    bool has_pending = false;
+    bool booted = false;
+    bool configured = false;
+    bool hb_monitor = false;
+    TimeNs last_heartbeat = 0;
+    TimeNs nmt_commanded = 0;            ///< when the expected NMT state was commanded
+    mrqp_fw_cia402_state target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+    TimeNs target_since = 0;
+    bool target_timed_out = false;
+    double sp_position = 0.0;
+    double sp_torque = 0.0;
+    bool sp_position_valid = false;
+    bool sp_torque_valid = false;
+    bool got_tpdo1 = false;
+    bool tpdo2_seen = false;
+    std::uint32_t sticky = 0;            ///< flags that hold until the next start() (boot failure)
+    mrqp_fw_cia402_state prev_state = MRQP_FW_CIA402_UNKNOWN;
+    Claim last_claim = Claim::Accepted;
+  };
+  struct BusSlot {
+    BusRouter* router = nullptr;
+    BusHealth health;
+    std::array<std::int16_t, 128> node_to_drive{};
+    bool cyclic_sent = false;            ///< cyclic traffic (RPDOs, SYNC) has started
+    std::uint8_t sync_counter = 0;
+    bool has_drives = false;
+  };
+
+  ArmDriver() = default;
+  void build_writes(Drive& d) const;
+  int slot_of(const BusRouter& router) const noexcept;
+  bool send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept;
+  void set_pending(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void fail_boot(Drive& d, std::uint32_t flags) noexcept;
+  void set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept;
+  Claim on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept;
+  void decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept;
+
+  ArmConfig config_;
+  std::vector<Drive> drives_;
+  std::vector<BusSlot> buses_;
+  std::vector<DeviceFaults> device_faults_;
+  std::vector<BusFaults> bus_faults_;
+  FaultReport report_{};
+  ArmPhase phase_ = ArmPhase::Idle;
+  TimeNs phase_since_ = 0;
+  bool reset_sent_ = false;
+  TimeNs next_master_heartbeat_ = 0;
+};
+
+}  // namespace mrqp::drivers

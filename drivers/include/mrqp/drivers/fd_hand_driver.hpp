@@ -1,0 +1,125 @@
+// mrqp drivers -- hand controller boards on CAN FD (firmware_if/hand_fd_frame.h).
+//
+// Every cycle each board gets ceil(joints / 11) command frames (identifier 0x120 + board, BRS),
+// all with the same sequence number (incremented every cycle) and the requested mode: DISABLED
+// until request_enable(), then the configured mode (POSITION or TORQUE), DISABLED again after
+// request_disable(). Commands are sent in every mode so the board's command timeout never fires
+// and its feedback (0x140 + board, one frame per 11 joints) keeps coming. The driver checks each
+// feedback frame (CRC, version, layout: the firmware_if unpack), the feedback counter (a gap is
+// lost frames), the sequence echo (lagging more than max_seq_lag cycles: commands not applied),
+// the status bits (fault, over-temperature, command timeout, CRC error seen, limit) and, once
+// enabled, that the board reports the requested mode. Until a joint is given a setpoint after
+// enabling, it is commanded to its measured position with zero velocity and torque.
+//
+// Cycle: BusRouter::poll, update(now), set_joint(), transmit(now). Real-time safe after create().
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrqp/drivers/bus_budget.hpp"
+#include "mrqp/drivers/bus_health.hpp"
+#include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/setpoint.hpp"
+#include "mrqp/drivers/time.hpp"
+#include "mrqp/firmware_if/hand_fd_frame.h"
+
+namespace mrqp::drivers {
+
+struct HandBoardConfig {
+  std::size_t bus = 0;       ///< index into the routers given to create(); the bus must be CAN FD
+  std::uint8_t board = 0;    ///< 0..15
+  std::uint8_t joints = 20;  ///< 1..32
+  mrqp_fw_hand_scale scale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
+};
+
+struct FdHandConfig {
+  std::vector<HandBoardConfig> boards;
+  std::uint8_t enabled_mode = MRQP_FW_HAND_MODE_POSITION;  ///< POSITION or TORQUE
+  std::uint32_t feedback_missing_cycles = 3;
+  std::uint16_t max_seq_lag = 2;   ///< cycles the echoed sequence may lag behind
+  TimeNs enable_timeout = milliseconds(100);
+};
+
+struct HandJointState {
+  float position = 0.0f;  ///< rad
+  float velocity = 0.0f;  ///< rad/s
+  float torque = 0.0f;    ///< N m
+};
+
+struct HandBoardState {
+  std::uint8_t mode = 0xFF;      ///< mode reported by the board (0xFF: none yet)
+  std::uint8_t status = 0;       ///< MRQP_FW_HAND_STATUS_* of the last feedback
+  std::uint16_t seq = 0;         ///< sequence of the last command sent
+  std::uint16_t seq_echo = 0;    ///< last sequence echoed by the board
+  std::uint8_t counter = 0;      ///< last feedback counter
+  bool valid = false;            ///< complete feedback received at least once
+  bool fresh = false;            ///< every feedback frame of this cycle arrived
+  bool enabled = false;          ///< the board confirmed the requested (non-disabled) mode
+  TimeNs timestamp = 0;          ///< reception time of the last feedback frame
+};
+
+class FdHandDriver final : public FrameHandler {
+ public:
+  static std::unique_ptr<FdHandDriver> create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
+                                              std::string* error);
+  ~FdHandDriver();
+  FdHandDriver(const FdHandDriver&) = delete;
+  FdHandDriver& operator=(const FdHandDriver&) = delete;
+
+  void request_enable(TimeNs now) noexcept;
+  void request_disable(TimeNs now) noexcept;
+
+  const FaultReport& update(TimeNs now) noexcept;
+  /// Setpoint of joint `joint` of board `board` (index in the configuration).
+  SetpointResult set_joint(std::size_t board, std::size_t joint, float position, float velocity,
+                           float torque) noexcept;
+  std::size_t transmit(TimeNs now) noexcept;
+
+  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+
+  std::size_t board_count() const noexcept { return boards_.size(); }
+  const HandBoardState& board(std::size_t i) const noexcept { return boards_[i].state; }
+  const HandJointState& joint(std::size_t board, std::size_t j) const noexcept { return boards_[board].joints[j]; }
+  bool all_enabled() const noexcept;
+  const FaultReport& faults() const noexcept { return report_; }
+  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+
+ private:
+  struct Board {
+    HandBoardConfig cfg;
+    HandBoardState state;
+    DeviceFaults faults;
+    std::uint32_t events = 0;
+    std::array<HandJointState, MRQP_FW_HAND_MAX_JOINTS> joints{};
+    std::array<HandJointState, MRQP_FW_HAND_MAX_JOINTS> sp{};
+    std::uint32_t sp_valid = 0;      ///< bit per joint
+    std::uint32_t chunks = 0;        ///< frames per cycle and direction
+    std::uint32_t chunks_seen = 0;   ///< bit per feedback frame this cycle
+    bool counter_valid = false;
+    bool sent = false;               ///< commands went out at the previous transmit
+    std::uint8_t mode_requested = MRQP_FW_HAND_MODE_DISABLED;
+    TimeNs mode_since = 0;
+  };
+  struct BusSlot {
+    BusRouter* router = nullptr;
+    BusHealth health;
+    std::array<std::int16_t, 16> board_to_index{};
+  };
+  FdHandDriver() = default;
+  int slot_of(const BusRouter& router) const noexcept;
+
+  FdHandConfig config_;
+  std::vector<Board> boards_;
+  std::vector<BusSlot> buses_;
+  std::vector<DeviceFaults> device_faults_;
+  std::vector<BusFaults> bus_faults_;
+  FaultReport report_{};
+};
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,114 @@
+// mrqp drivers -- hand actuators in "MIT mode" on classic CAN (firmware_if/mit_frame.h).
+//
+// Every cycle each motor gets exactly one frame and answers with one reply (identifier 0x000,
+// motor id in byte 0): an impedance command (p, v, kp, kd, t) when enabled, the special
+// "enter motor mode" frame while enabling (repeated every cycle until the motor answers), "exit
+// motor mode" while disabling (likewise), and while disabled a zero-gain command (kp = kd = t = 0:
+// no torque even if the motor were enabled) so that positions are read and the motor is monitored.
+// A reply missing for N cycles is a fault. The hand bus is not a CANopen bus: identifier 0x000
+// is the master's reply address, so MIT motors need their own bus.
+//
+// Cycle: BusRouter::poll, update(now), set_command(), transmit(now). Real-time safe after create().
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrqp/drivers/bus_budget.hpp"
+#include "mrqp/drivers/bus_health.hpp"
+#include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/setpoint.hpp"
+#include "mrqp/drivers/time.hpp"
+#include "mrqp/firmware_if/mit_frame.h"
+
+namespace mrqp::drivers {
+
+struct MitMotorConfig {
+  std::size_t bus = 0;         ///< index into the routers given to create()
+  std::uint8_t motor_id = 1;   ///< 1..127
+  mrqp_fw_mit_ranges ranges = MRQP_FW_MIT_RANGES_DEFAULT_INIT;
+  float position_min = -std::numeric_limits<float>::infinity();  ///< rad: setpoints clamped, feedback flagged
+  float position_max = std::numeric_limits<float>::infinity();
+};
+
+struct MitHandConfig {
+  std::vector<MitMotorConfig> motors;
+  std::uint32_t feedback_missing_cycles = 3;
+  bool poll_when_disabled = true;          ///< zero-gain commands while disabled
+  TimeNs enable_timeout = milliseconds(100);
+};
+
+/// Per-motor power mode as driven by this driver.
+enum class MitMode : std::uint8_t { Off = 0, Enabling, On, Disabling };
+
+struct MitMotorState {
+  float position = 0.0f;  ///< rad
+  float velocity = 0.0f;  ///< rad/s
+  float torque = 0.0f;    ///< N m
+  MitMode mode = MitMode::Off;
+  bool valid = false;     ///< a reply has been received
+  bool fresh = false;     ///< a reply arrived since the previous update()
+  TimeNs timestamp = 0;
+};
+
+class MitHandDriver final : public FrameHandler {
+ public:
+  static std::unique_ptr<MitHandDriver> create(const std::vector<BusRouter*>& buses, const MitHandConfig& config,
+                                               std::string* error);
+  ~MitHandDriver();
+  MitHandDriver(const MitHandDriver&) = delete;
+  MitHandDriver& operator=(const MitHandDriver&) = delete;
+
+  void request_enable(TimeNs now) noexcept;
+  void request_disable(TimeNs now) noexcept;
+
+  const FaultReport& update(TimeNs now) noexcept;
+  /// Impedance command for the next transmit() (used while the motor is On).
+  SetpointResult set_command(std::size_t motor, const mrqp_fw_mit_cmd& cmd) noexcept;
+  std::size_t transmit(TimeNs now) noexcept;
+
+  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+
+  bool all_on() const noexcept;
+  bool all_off() const noexcept;
+  std::size_t motor_count() const noexcept { return motors_.size(); }
+  const MitMotorState& motor(std::size_t i) const noexcept { return motors_[i].state; }
+  const FaultReport& faults() const noexcept { return report_; }
+  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+
+ private:
+  struct Motor {
+    MitMotorConfig cfg;
+    MitMotorState state;
+    DeviceFaults faults;
+    std::uint32_t events = 0;
+    mrqp_fw_mit_cmd sp{};
+    bool sp_valid = false;
+    bool sent = false;         ///< a frame went out at the previous transmit
+    bool replied = false;      ///< a reply since the previous update
+    bool special_sent = false; ///< ENABLE / DISABLE went out; the next reply confirms it
+    TimeNs mode_since = 0;
+  };
+  struct BusSlot {
+    BusRouter* router = nullptr;
+    BusHealth health;
+    std::array<std::int16_t, 128> id_to_motor{};
+  };
+  MitHandDriver() = default;
+  int slot_of(const BusRouter& router) const noexcept;
+
+  MitHandConfig config_;
+  std::vector<Motor> motors_;
+  std::vector<BusSlot> buses_;
+  std::vector<DeviceFaults> device_faults_;
+  std::vector<BusFaults> bus_faults_;
+  FaultReport report_{};
+};
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,617 @@
+// mrqp drivers -- arm drives, CiA 402 master: the real-time part. See arm_driver.hpp.
+#include "mrqp/drivers/arm_driver.hpp"
+
+#include "driver_util.hpp"
+#include "mrqp/firmware_if/arm_pdo.h"
+#include "mrqp/firmware_if/canopen_ids.h"
+#include "mrqp/firmware_if/emcy.h"
+#include "mrqp/firmware_if/nmt.h"
+#include "mrqp/firmware_if/sync.h"
+
+namespace mrqp::drivers {
+
+namespace {
+
+bool is_fault_state(mrqp_fw_cia402_state s) noexcept
+{
+  return s == MRQP_FW_CIA402_FAULT || s == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE || s == MRQP_FW_CIA402_UNKNOWN;
+}
+
+bool reached(mrqp_fw_cia402_state target, mrqp_fw_cia402_state s) noexcept
+{
+  switch (target) {
+  case MRQP_FW_CIA402_SWITCH_ON_DISABLED:
+    return s == MRQP_FW_CIA402_SWITCH_ON_DISABLED || s == MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
+  case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
+    return s == MRQP_FW_CIA402_QUICK_STOP_ACTIVE || s == MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+  default:
+    return s == target;
+  }
+}
+
+}  // namespace
+
+const char* arm_phase_str(ArmPhase phase) noexcept
+{
+  switch (phase) {
+  case ArmPhase::Idle: return "idle";
+  case ArmPhase::Resetting: return "resetting";
+  case ArmPhase::Configuring: return "configuring";
+  case ArmPhase::Starting: return "starting";
+  case ArmPhase::Running: return "running";
+  case ArmPhase::Failed: return "failed";
+  }
+  return "unknown";
+}
+
+int ArmDriver::slot_of(const BusRouter& router) const noexcept
+{
+  for (std::size_t i = 0; i < buses_.size(); ++i) {
+    if (buses_[i].router == &router) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept
+{
+  const SendResult r = buses_[slot].router->bus().send(f);
+  if (r == SendResult::Ok) {
+    return true;
+  }
+  if (r == SendResult::QueueFull && d != nullptr) {
+    ++d->faults.tx_queue_full;
+    d->events |= fault::kTxQueueFull;
+  }
+  return false;
+}
+
+void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept
+{
+  d.pending = f;
+  d.has_pending = true;
+}
+
+void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept
+{
+  d.events |= flags;
+  d.sticky |= flags;
+  phase_ = ArmPhase::Failed;
+}
+
+void ArmDriver::start(TimeNs now) noexcept
+{
+  phase_ = config_.reset == NmtReset::None ? ArmPhase::Configuring : ArmPhase::Resetting;
+  phase_since_ = now;
+  next_master_heartbeat_ = now;
+  for (BusSlot& b : buses_) {
+    b.cyclic_sent = false;
+    b.sync_counter = 0;
+  }
+  for (Drive& d : drives_) {
+    d.write_step = 0;
+    mrqp_fw_sdo_client_reset(&d.sdo);
+    d.sdo_busy = false;
+    d.has_pending = false;
+    d.booted = config_.reset == NmtReset::None;
+    d.configured = d.writes.empty();
+    d.hb_monitor = false;
+    d.sticky = 0;
+    d.faults.sdo_abort_code = 0;
+    d.faults.sdo_index = 0;
+    d.faults.sdo_subindex = 0;
+    d.faults.missed_cycles = 0;
+    d.nmt_commanded = now;
+    d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+    d.target_since = now;
+    d.sp_position_valid = false;
+    d.sp_torque_valid = false;
+    d.got_tpdo1 = false;
+    d.state.valid = false;
+    d.state.state = MRQP_FW_CIA402_UNKNOWN;
+    d.state.controlword = 0;
+    mrqp_fw_frame f;
+    const mrqp_fw_nmt_cmd cmd = config_.reset == NmtReset::Node            ? MRQP_FW_NMT_RESET_NODE
+                                : config_.reset == NmtReset::Communication ? MRQP_FW_NMT_RESET_COMM
+                                                                           : MRQP_FW_NMT_ENTER_PREOP;
+    (void)mrqp_fw_nmt_pack(cmd, d.cfg.node, &f);
+    set_pending(d, f);
+  }
+}
+
+void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept
+{
+  for (Drive& d : drives_) {
+    d.target = target;
+    d.target_since = now;
+    d.sp_position_valid = false;
+    d.sp_torque_valid = false;
+  }
+}
+
+void ArmDriver::request_enable(TimeNs now) noexcept
+{
+  set_target(MRQP_FW_CIA402_OPERATION_ENABLED, now);
+}
+
+void ArmDriver::request_disable(TimeNs now) noexcept
+{
+  set_target(MRQP_FW_CIA402_SWITCH_ON_DISABLED, now);
+}
+
+void ArmDriver::request_quick_stop(TimeNs now) noexcept
+{
+  set_target(MRQP_FW_CIA402_QUICK_STOP_ACTIVE, now);
+}
+
+bool ArmDriver::all_enabled() const noexcept
+{
+  for (const Drive& d : drives_) {
+    if (!d.state.valid || d.state.state != MRQP_FW_CIA402_OPERATION_ENABLED) {
+      return false;
+    }
+  }
+  return !drives_.empty();
+}
+
+bool ArmDriver::all_disabled() const noexcept
+{
+  for (const Drive& d : drives_) {
+    if (!d.state.valid || !reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
+      return false;
+    }
+  }
+  return !drives_.empty();
+}
+
+SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept
+{
+  if (i >= drives_.size()) {
+    return SetpointResult::BadIndex;
+  }
+  Drive& d = drives_[i];
+  if (!detail::finite(rad)) {
+    ++d.faults.refused_setpoints;
+    d.events |= fault::kSetpointRefused;
+    return SetpointResult::Refused;
+  }
+  bool limited = false;
+  d.sp_position = detail::clamp(rad, d.cfg.position_min, d.cfg.position_max, &limited);
+  d.sp_position_valid = true;
+  if (limited) {
+    ++d.faults.limited_setpoints;
+    d.events |= fault::kSetpointLimited;
+    return SetpointResult::Limited;
+  }
+  return SetpointResult::Ok;
+}
+
+SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept
+{
+  if (i >= drives_.size()) {
+    return SetpointResult::BadIndex;
+  }
+  Drive& d = drives_[i];
+  if (!detail::finite(nm)) {
+    ++d.faults.refused_setpoints;
+    d.events |= fault::kSetpointRefused;
+    return SetpointResult::Refused;
+  }
+  bool limited = false;
+  d.sp_torque = detail::clamp(nm, -d.cfg.torque_limit, d.cfg.torque_limit, &limited);
+  d.sp_torque_valid = true;
+  if (limited) {
+    ++d.faults.limited_setpoints;
+    d.events |= fault::kSetpointLimited;
+    return SetpointResult::Limited;
+  }
+  return SetpointResult::Ok;
+}
+
+const FaultReport& ArmDriver::update(TimeNs now) noexcept
+{
+  ++report_.cycle;
+  for (std::size_t s = 0; s < buses_.size(); ++s) {
+    bus_faults_[s] = buses_[s].health.update(*buses_[s].router);
+  }
+
+  // Boot progression.
+  if (phase_ == ArmPhase::Resetting) {
+    bool all = true;
+    for (const Drive& d : drives_) {
+      all = all && d.booted;
+    }
+    if (all) {
+      phase_ = ArmPhase::Configuring;
+      phase_since_ = now;
+    } else if (now - phase_since_ > config_.boot_timeout) {
+      for (Drive& d : drives_) {
+        if (!d.booted) {
+          fail_boot(d, fault::kTimeout | fault::kBootFailed);
+        }
+      }
+    }
+  }
+  if (phase_ == ArmPhase::Configuring) {
+    bool all = true;
+    for (Drive& d : drives_) {
+      if (d.sdo_busy && now - d.sdo_sent > config_.sdo_timeout) {
+        mrqp_fw_frame out;
+        if (mrqp_fw_sdo_client_timeout(&d.sdo, &out) == MRQP_FW_SDO_STEP_ABORT_SEND) {
+          set_pending(d, out);
+        }
+        d.sdo_busy = false;
+        d.faults.sdo_abort_code = MRQP_FW_SDO_ABORT_TIMEOUT;
+        d.faults.sdo_index = d.writes[d.write_step].index;
+        d.faults.sdo_subindex = d.writes[d.write_step].subindex;
+        fail_boot(d, fault::kTimeout | fault::kBootFailed);
+      }
+      all = all && d.configured;
+    }
+    if (phase_ == ArmPhase::Configuring && all) {
+      phase_ = ArmPhase::Starting;
+      phase_since_ = now;
+      for (Drive& d : drives_) {
+        mrqp_fw_frame f;
+        (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, d.cfg.node, &f);
+        set_pending(d, f);
+        d.nmt_commanded = now;
+      }
+    }
+  }
+
+  const TimeNs nmt_grace = 2 * config_.cycle_period;
+  for (std::size_t i = 0; i < drives_.size(); ++i) {
+    Drive& d = drives_[i];
+    const BusSlot& slot = buses_[d.cfg.bus];
+    std::uint32_t flags = d.events | d.sticky;
+    d.events = 0;
+    d.state.fresh = d.got_tpdo1;
+
+    if (phase_ == ArmPhase::Running && slot.cyclic_sent) {
+      d.faults.missed_cycles = d.got_tpdo1 ? 0u : d.faults.missed_cycles + 1u;
+    }
+    d.got_tpdo1 = false;
+    if (d.faults.missed_cycles >= config_.feedback_missing_cycles) {
+      flags |= fault::kFeedbackMissing;
+    }
+    if (d.hb_monitor && now - d.last_heartbeat > config_.heartbeat_timeout) {
+      flags |= fault::kHeartbeatLost;
+    }
+    if (d.faults.emcy_code != 0u) {
+      flags |= fault::kEmcy;
+    }
+    if (phase_ == ArmPhase::Running) {
+      if (d.hb_monitor && d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
+          d.last_heartbeat > d.nmt_commanded + nmt_grace) {
+        flags |= fault::kStateMismatch;
+      }
+      if (d.state.valid) {
+        const mrqp_fw_cia402_state s = d.state.state;
+        if (is_fault_state(s)) {
+          flags |= fault::kDeviceFault;
+          if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !is_fault_state(d.prev_state)) {
+            // Fell into Fault while enabled: stay there until the caller asks again.
+            d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+            d.target_since = now;
+          }
+        }
+        if (s != MRQP_FW_CIA402_OPERATION_ENABLED) {
+          d.sp_position_valid = false;
+          d.sp_torque_valid = false;
+        }
+        if (config_.tpdo2 && d.tpdo2_seen && s == MRQP_FW_CIA402_OPERATION_ENABLED &&
+            d.state.mode_display != d.cfg.mode) {
+          flags |= fault::kStateMismatch;
+        }
+        d.prev_state = s;
+      }
+      if (!(d.state.valid && reached(d.target, d.state.state)) && now - d.target_since > config_.enable_timeout) {
+        flags |= fault::kTimeout;
+      }
+    }
+    d.faults.flags = flags;
+    device_faults_[i] = d.faults;
+  }
+  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
+  return report_;
+}
+
+std::size_t ArmDriver::transmit(TimeNs now) noexcept
+{
+  std::size_t count = 0;
+  // One-shot frames (NMT, SDO) first; kept for the next cycle when the queue is full.
+  for (Drive& d : drives_) {
+    if (d.has_pending && send(d.cfg.bus, &d, d.pending)) {
+      d.has_pending = false;
+      ++count;
+      if (d.sdo_busy) {
+        d.sdo_sent = now;
+      }
+    }
+  }
+
+  switch (phase_) {
+  case ArmPhase::Configuring:
+    for (Drive& d : drives_) {
+      if (d.configured || d.sdo_busy || d.has_pending || d.write_step >= d.writes.size()) {
+        continue;
+      }
+      const SdoWrite& w = d.writes[d.write_step];
+      for (unsigned k = 0; k < 4; ++k) {
+        d.sdo_data[k] = static_cast<std::uint8_t>((w.value >> (8u * k)) & 0xFFu);
+      }
+      mrqp_fw_frame out;
+      if (mrqp_fw_sdo_client_start_download(&d.sdo, d.cfg.node, w.index, w.subindex, d.sdo_data.data(), w.size,
+                                            &out) != MRQP_FW_SDO_STEP_SEND) {
+        fail_boot(d, fault::kBootFailed);
+        continue;
+      }
+      d.sdo_busy = true;
+      d.sdo_sent = now;
+      if (send(d.cfg.bus, &d, out)) {
+        ++count;
+      } else {
+        set_pending(d, out);
+      }
+    }
+    break;
+  case ArmPhase::Starting: {
+    bool all_sent = true;
+    for (const Drive& d : drives_) {
+      all_sent = all_sent && !d.has_pending;
+    }
+    if (all_sent) {
+      phase_ = ArmPhase::Running;
+      phase_since_ = now;
+      for (Drive& d : drives_) {
+        d.target_since = now;
+        d.prev_state = MRQP_FW_CIA402_UNKNOWN;
+      }
+    }
+    break;
+  }
+  case ArmPhase::Running:
+    for (std::size_t s = 0; s < buses_.size(); ++s) {
+      BusSlot& slot = buses_[s];
+      if (!slot.has_drives) {
+        continue;
+      }
+      for (Drive& d : drives_) {
+        if (d.cfg.bus != s) {
+          continue;
+        }
+        const mrqp_fw_cia402_state current = d.state.valid ? d.state.state : MRQP_FW_CIA402_UNKNOWN;
+        // A drive in Fault is only reset when the caller asks for Operation enabled again.
+        const std::uint16_t cw = is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
+                                     ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
+                                     : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
+        const bool enabled = current == MRQP_FW_CIA402_OPERATION_ENABLED && d.target == MRQP_FW_CIA402_OPERATION_ENABLED;
+        // Not enabled, or no setpoint yet: hold the measured position (raw increments), no torque.
+        std::int32_t position_inc = d.state.position_inc;
+        std::int16_t torque_permille = 0;
+        bool limited = false;
+        if (enabled && d.sp_position_valid && d.cfg.mode == MRQP_FW_MODE_CSP) {
+          limited = mrqp_fw_arm_position_to_inc(&d.cfg.scale, d.sp_position, &position_inc) != MRQP_FW_CONV_OK;
+        }
+        if (enabled && d.sp_torque_valid) {
+          limited = limited ||
+                    mrqp_fw_arm_torque_to_permille(&d.cfg.scale, d.sp_torque, &torque_permille) != MRQP_FW_CONV_OK;
+        }
+        mrqp_fw_frame f;
+        const mrqp_fw_arm_rpdo1 raw{cw, position_inc, torque_permille};
+        const mrqp_fw_pack_flags pf = mrqp_fw_arm_pack_rpdo1(d.cfg.node, &raw, &f);
+        if (mrqp_fw_pack_failed(pf)) {
+          continue;  // cannot happen: node validated at construction
+        }
+        if (limited) {
+          ++d.faults.limited_setpoints;
+          d.events |= fault::kSetpointLimited;
+        }
+        d.state.controlword = cw;
+        if (send(s, &d, f)) {
+          ++count;
+        }
+      }
+      if (config_.produce_sync) {
+        if (config_.sync_counter_overflow >= 2u) {
+          slot.sync_counter = mrqp_fw_sync_counter_next(slot.sync_counter, config_.sync_counter_overflow);
+        }
+        mrqp_fw_frame f;
+        (void)mrqp_fw_sync_pack(config_.sync_counter_overflow >= 2u ? slot.sync_counter : 0u, &f);
+        if (send(s, nullptr, f)) {
+          ++count;
+        }
+      }
+      // Feedback is expected from now on, even if the SYNC could not be queued (a full queue
+      // then shows up as missing feedback, not as silence).
+      slot.cyclic_sent = true;
+    }
+    break;
+  case ArmPhase::Idle:
+  case ArmPhase::Resetting:
+  case ArmPhase::Failed:
+    break;
+  }
+
+  if (config_.master_node != 0u && phase_ != ArmPhase::Idle && now >= next_master_heartbeat_) {
+    mrqp_fw_frame f;
+    (void)mrqp_fw_heartbeat_pack(config_.master_node, MRQP_FW_NMT_STATE_OPERATIONAL, &f);
+    for (std::size_t s = 0; s < buses_.size(); ++s) {
+      if (buses_[s].has_drives && send(s, nullptr, f)) {
+        ++count;
+      }
+    }
+    const TimeNs period = milliseconds(config_.master_heartbeat_ms > 0 ? config_.master_heartbeat_ms : 1);
+    while (next_master_heartbeat_ <= now) {
+      next_master_heartbeat_ += period;
+    }
+  }
+  return count;
+}
+
+Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept
+{
+  if (!d.sdo_busy) {
+    ++d.faults.corrupt_frames;
+    d.events |= fault::kCorruptFrame;
+    return Claim::Rejected;
+  }
+  mrqp_fw_frame out;
+  const mrqp_fw_sdo_step step = mrqp_fw_sdo_client_on_frame(&d.sdo, &f, &out);
+  const SdoWrite& w = d.writes[d.write_step];
+  switch (step) {
+  case MRQP_FW_SDO_STEP_DONE:
+    d.sdo_busy = false;
+    ++d.write_step;
+    d.configured = d.write_step >= d.writes.size();
+    return Claim::Accepted;
+  case MRQP_FW_SDO_STEP_SEND:
+    set_pending(d, out);
+    return Claim::Accepted;
+  case MRQP_FW_SDO_STEP_ABORTED:
+    d.sdo_busy = false;
+    d.faults.sdo_abort_code = d.sdo.abort_code;
+    d.faults.sdo_index = w.index;
+    d.faults.sdo_subindex = w.subindex;
+    fail_boot(d, fault::kBootFailed);
+    return Claim::Accepted;
+  case MRQP_FW_SDO_STEP_ABORT_SEND:
+    d.sdo_busy = false;
+    set_pending(d, out);
+    d.faults.sdo_abort_code = d.sdo.abort_code;
+    d.faults.sdo_index = w.index;
+    d.faults.sdo_subindex = w.subindex;
+    ++d.faults.corrupt_frames;
+    fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
+    return Claim::Rejected;
+  case MRQP_FW_SDO_STEP_IGNORED:
+  case MRQP_FW_SDO_STEP_ERROR:
+    break;
+  }
+  ++d.faults.corrupt_frames;
+  d.events |= fault::kCorruptFrame;
+  return Claim::Rejected;
+}
+
+void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept
+{
+  mrqp_fw_arm_tpdo1 p;
+  if (mrqp_fw_arm_unpack_tpdo1(&f, d.cfg.node, &p) != MRQP_FW_OK) {
+    ++d.faults.corrupt_frames;
+    d.events |= fault::kCorruptFrame;
+    d.last_claim = Claim::Rejected;
+    return;
+  }
+  ArmDriveState& s = d.state;
+  s.statusword = p.statusword;
+  s.state = mrqp_fw_cia402_decode_statusword(p.statusword);
+  s.position_inc = p.position_actual;
+  s.torque_permille = p.torque_actual;
+  (void)mrqp_fw_arm_position_from_inc(&d.cfg.scale, p.position_actual, &s.position);
+  (void)mrqp_fw_arm_torque_from_permille(&d.cfg.scale, p.torque_actual, &s.torque);
+  s.valid = true;
+  s.timestamp = t;
+  d.got_tpdo1 = true;
+  if (s.position < d.cfg.position_min || s.position > d.cfg.position_max) {
+    ++d.faults.out_of_range;
+    d.events |= fault::kOutOfRange;
+  }
+  if (s.torque < -d.cfg.torque_limit || s.torque > d.cfg.torque_limit) {
+    ++d.faults.out_of_range;
+    d.events |= fault::kOutOfRange;
+  }
+  d.last_claim = Claim::Accepted;
+}
+
+void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept
+{
+  mrqp_fw_arm_tpdo2 p;
+  if (mrqp_fw_arm_unpack_tpdo2(&f, d.cfg.node, &p) != MRQP_FW_OK) {
+    ++d.faults.corrupt_frames;
+    d.events |= fault::kCorruptFrame;
+    d.last_claim = Claim::Rejected;
+    return;
+  }
+  ArmDriveState& s = d.state;
+  s.velocity_inc = p.velocity_actual;
+  (void)mrqp_fw_arm_velocity_from_inc(&d.cfg.scale, p.velocity_actual, &s.velocity);
+  s.error_code = p.error_code;
+  s.mode_display = p.mode_display;
+  d.tpdo2_seen = true;
+  if (s.velocity < -d.cfg.velocity_limit || s.velocity > d.cfg.velocity_limit) {
+    ++d.faults.out_of_range;
+    d.events |= fault::kOutOfRange;
+  }
+  d.last_claim = Claim::Accepted;
+}
+
+Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
+{
+  const int slot = slot_of(from);
+  const mrqp_fw_frame& f = rx.frame;
+  if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
+    return Claim::NotMine;
+  }
+  std::uint8_t node = 0;
+  const mrqp_fw_cob kind = mrqp_fw_cob_decode(f.id, &node);
+  if (node == 0u || node > 127u) {
+    return Claim::NotMine;
+  }
+  const std::int16_t index = buses_[static_cast<std::size_t>(slot)].node_to_drive[node];
+  if (index < 0) {
+    return Claim::NotMine;
+  }
+  Drive& d = drives_[static_cast<std::size_t>(index)];
+  const TimeNs t = detail::rx_time(rx, now);
+  switch (kind) {
+  case MRQP_FW_COB_KIND_HEARTBEAT: {
+    std::uint8_t n = 0;
+    mrqp_fw_nmt_state st;
+    if (mrqp_fw_heartbeat_unpack(&f, &n, &st) != MRQP_FW_OK) {
+      break;
+    }
+    d.state.nmt_state = static_cast<std::uint8_t>(st);
+    d.last_heartbeat = t;
+    d.hb_monitor = config_.producer_heartbeat_ms > 0u;
+    if (st == MRQP_FW_NMT_STATE_BOOTUP) {
+      if (phase_ == ArmPhase::Resetting) {
+        d.booted = true;
+      } else if (phase_ != ArmPhase::Idle && phase_ != ArmPhase::Failed) {
+        d.events |= fault::kStateMismatch;  // the drive rebooted on its own
+      }
+    }
+    return Claim::Accepted;
+  }
+  case MRQP_FW_COB_KIND_EMCY: {
+    std::uint8_t n = 0;
+    mrqp_fw_emcy e;
+    if (mrqp_fw_emcy_unpack(&f, &n, &e) != MRQP_FW_OK) {
+      break;
+    }
+    ++d.faults.emcy_count;
+    d.faults.emcy_code = e.error_code;
+    d.faults.emcy_register = e.error_register;
+    if (e.error_code != 0u) {
+      d.events |= fault::kEmcy;
+    }
+    return Claim::Accepted;
+  }
+  case MRQP_FW_COB_KIND_TPDO1:
+    decode_tpdo1(d, f, t);
+    return d.last_claim;
+  case MRQP_FW_COB_KIND_TPDO2:
+    decode_tpdo2(d, f);
+    return d.last_claim;
+  case MRQP_FW_COB_KIND_SDO_TX:
+    return on_sdo(d, f);
+  default:
+    return Claim::NotMine;
+  }
+  ++d.faults.corrupt_frames;
+  d.events |= fault::kCorruptFrame;
+  return Claim::Rejected;
+}
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,237 @@
+// mrqp drivers -- hand controller boards on CAN FD: the real-time part. See fd_hand_driver.hpp.
+#include "mrqp/drivers/fd_hand_driver.hpp"
+
+#include "driver_util.hpp"
+
+namespace mrqp::drivers {
+
+int FdHandDriver::slot_of(const BusRouter& router) const noexcept
+{
+  for (std::size_t i = 0; i < buses_.size(); ++i) {
+    if (buses_[i].router == &router) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+void FdHandDriver::request_enable(TimeNs now) noexcept
+{
+  for (Board& b : boards_) {
+    b.mode_requested = config_.enabled_mode;
+    b.mode_since = now;
+    b.sp_valid = 0;
+    b.state.enabled = false;
+  }
+}
+
+void FdHandDriver::request_disable(TimeNs now) noexcept
+{
+  for (Board& b : boards_) {
+    b.mode_requested = MRQP_FW_HAND_MODE_DISABLED;
+    b.mode_since = now;
+    b.sp_valid = 0;
+    b.state.enabled = false;
+  }
+}
+
+bool FdHandDriver::all_enabled() const noexcept
+{
+  for (const Board& b : boards_) {
+    if (!b.state.enabled) {
+      return false;
+    }
+  }
+  return !boards_.empty();
+}
+
+SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, float position, float velocity,
+                                       float torque) noexcept
+{
+  if (board >= boards_.size() || joint >= boards_[board].cfg.joints) {
+    return SetpointResult::BadIndex;
+  }
+  Board& b = boards_[board];
+  if (!detail::finite_f(position) || !detail::finite_f(velocity) || !detail::finite_f(torque)) {
+    ++b.faults.refused_setpoints;
+    b.events |= fault::kSetpointRefused;
+    return SetpointResult::Refused;
+  }
+  // The wire range of each field: +/-(2^(bits-1) - 1) LSB.
+  const mrqp_fw_hand_scale& s = b.cfg.scale;
+  const double pmax = 32767.0 * static_cast<double>(s.position_lsb);
+  const double vmax = 2047.0 * static_cast<double>(s.velocity_lsb);
+  const double tmax = 2047.0 * static_cast<double>(s.torque_lsb);
+  bool limited = false;
+  HandJointState& sp = b.sp[joint];
+  sp.position = static_cast<float>(detail::clamp(position, -pmax, pmax, &limited));
+  sp.velocity = static_cast<float>(detail::clamp(velocity, -vmax, vmax, &limited));
+  sp.torque = static_cast<float>(detail::clamp(torque, -tmax, tmax, &limited));
+  b.sp_valid |= 1u << joint;
+  if (limited) {
+    ++b.faults.limited_setpoints;
+    b.events |= fault::kSetpointLimited;
+    return SetpointResult::Limited;
+  }
+  return SetpointResult::Ok;
+}
+
+const FaultReport& FdHandDriver::update(TimeNs now) noexcept
+{
+  ++report_.cycle;
+  for (std::size_t s = 0; s < buses_.size(); ++s) {
+    bus_faults_[s] = buses_[s].health.update(*buses_[s].router);
+  }
+  for (std::size_t i = 0; i < boards_.size(); ++i) {
+    Board& b = boards_[i];
+    std::uint32_t flags = b.events;
+    b.events = 0;
+    const std::uint32_t all = (1u << b.chunks) - 1u;
+    const bool complete = (b.chunks_seen & all) == all;
+    b.state.fresh = complete;
+    if (complete) {
+      b.state.valid = true;
+    }
+    if (b.sent) {
+      b.faults.missed_cycles = complete ? 0u : b.faults.missed_cycles + 1u;
+    }
+    b.chunks_seen = 0;
+    b.sent = false;
+    if (b.faults.missed_cycles >= config_.feedback_missing_cycles) {
+      flags |= fault::kFeedbackMissing;
+    }
+    if (b.state.valid) {
+      const std::uint8_t st = b.state.status;
+      if ((st & MRQP_FW_HAND_STATUS_FAULT) != 0u) {
+        flags |= fault::kDeviceFault;
+      }
+      if ((st & (MRQP_FW_HAND_STATUS_OVER_TEMPERATURE | MRQP_FW_HAND_STATUS_CRC_ERROR_SEEN)) != 0u) {
+        flags |= fault::kDeviceWarning;
+      }
+      if ((st & MRQP_FW_HAND_STATUS_LIMIT) != 0u) {
+        flags |= fault::kOutOfRange;
+      }
+      if ((st & MRQP_FW_HAND_STATUS_COMMAND_TIMEOUT) != 0u) {
+        flags |= fault::kStateMismatch;
+      }
+      const std::uint16_t lag = static_cast<std::uint16_t>(b.state.seq - b.state.seq_echo);
+      if (lag > config_.max_seq_lag) {
+        flags |= fault::kStateMismatch;
+      }
+      const bool confirmed = b.state.mode == b.mode_requested &&
+                             (b.mode_requested == MRQP_FW_HAND_MODE_DISABLED ||
+                              (st & MRQP_FW_HAND_STATUS_ENABLED) != 0u);
+      if (b.mode_requested != MRQP_FW_HAND_MODE_DISABLED) {
+        if (confirmed) {
+          b.state.enabled = true;
+        } else if (b.state.enabled) {
+          flags |= fault::kStateMismatch;  // it was enabled and left the mode on its own
+        }
+      }
+      if (!confirmed && !b.state.enabled && now - b.mode_since > config_.enable_timeout) {
+        flags |= fault::kTimeout;
+      }
+    }
+    b.faults.flags = flags;
+    device_faults_[i] = b.faults;
+  }
+  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
+  return report_;
+}
+
+std::size_t FdHandDriver::transmit(TimeNs) noexcept
+{
+  std::size_t count = 0;
+  for (Board& b : boards_) {
+    ++b.state.seq;
+    bool any = false;
+    for (std::uint32_t k = 0; k < b.chunks; ++k) {
+      mrqp_fw_hand_cmd cmd{};
+      cmd.seq = b.state.seq;
+      cmd.mode = b.mode_requested;
+      const std::uint32_t first = k * MRQP_FW_HAND_FD_MAX_JOINTS;
+      const std::uint32_t left = b.cfg.joints - first;
+      cmd.first_joint = static_cast<std::uint8_t>(first);
+      cmd.count = static_cast<std::uint8_t>(left > MRQP_FW_HAND_FD_MAX_JOINTS ? MRQP_FW_HAND_FD_MAX_JOINTS : left);
+      for (std::uint32_t j = 0; j < cmd.count; ++j) {
+        const std::uint32_t joint = first + j;
+        if (b.state.enabled && (b.sp_valid & (1u << joint)) != 0u) {
+          cmd.joint[j].position = b.sp[joint].position;
+          cmd.joint[j].velocity = b.sp[joint].velocity;
+          cmd.joint[j].torque = b.sp[joint].torque;
+        } else {
+          cmd.joint[j].position = b.joints[joint].position;  // hold, no velocity, no torque
+        }
+      }
+      mrqp_fw_frame f;
+      std::uint32_t saturated = 0;
+      const mrqp_fw_pack_flags pf = mrqp_fw_hand_pack_cmd(&b.cfg.scale, b.cfg.board, &cmd, &f, &saturated);
+      if (mrqp_fw_pack_failed(pf)) {
+        continue;
+      }
+      if ((pf & MRQP_FW_PACK_SAT_MASK) != 0u) {
+        ++b.faults.limited_setpoints;
+        b.events |= fault::kSetpointLimited;
+      }
+      const SendResult r = buses_[b.cfg.bus].router->bus().send(f);
+      if (r == SendResult::Ok) {
+        ++count;
+        any = true;
+      } else if (r == SendResult::QueueFull) {
+        ++b.faults.tx_queue_full;
+        b.events |= fault::kTxQueueFull;
+      }
+    }
+    b.sent = any;
+  }
+  return count;
+}
+
+Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
+{
+  const int slot = slot_of(from);
+  const mrqp_fw_frame& f = rx.frame;
+  if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u || f.id < MRQP_FW_HAND_FD_FB_ID_BASE ||
+      f.id > MRQP_FW_HAND_FD_FB_ID_BASE + MRQP_FW_HAND_BOARD_MAX) {
+    return Claim::NotMine;
+  }
+  const std::uint32_t board = f.id - MRQP_FW_HAND_FD_FB_ID_BASE;
+  const std::int16_t index = buses_[static_cast<std::size_t>(slot)].board_to_index[board];
+  if (index < 0) {
+    return Claim::NotMine;
+  }
+  Board& b = boards_[static_cast<std::size_t>(index)];
+  mrqp_fw_hand_fb fb;
+  if (mrqp_fw_hand_unpack_fb(&b.cfg.scale, &f, board, &fb) != MRQP_FW_OK ||
+      static_cast<std::uint32_t>(fb.first_joint) + fb.count > b.cfg.joints) {
+    ++b.faults.corrupt_frames;
+    b.events |= fault::kCorruptFrame;
+    return Claim::Rejected;
+  }
+  HandBoardState& s = b.state;
+  if (b.counter_valid) {
+    const std::uint8_t expected = static_cast<std::uint8_t>(s.counter + 1u);
+    if (fb.counter != expected) {
+      b.faults.lost_samples += static_cast<std::uint8_t>(fb.counter - expected);
+      b.events |= fault::kSampleLost;
+    }
+  }
+  b.counter_valid = true;
+  s.counter = fb.counter;
+  s.seq_echo = fb.cmd_seq_echo;
+  s.mode = fb.mode;
+  s.status = fb.status;
+  s.timestamp = detail::rx_time(rx, now);
+  for (std::uint32_t j = 0; j < fb.count; ++j) {
+    HandJointState& js = b.joints[fb.first_joint + j];
+    js.position = fb.joint[j].position;
+    js.velocity = fb.joint[j].velocity;
+    js.torque = fb.joint[j].torque;
+  }
+  if (fb.first_joint % MRQP_FW_HAND_FD_MAX_JOINTS == 0u) {
+    b.chunks_seen |= 1u << (fb.first_joint / MRQP_FW_HAND_FD_MAX_JOINTS);
+  }
+  return Claim::Accepted;
+}
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,113 @@
+// mrqp drivers -- hand controller boards on CAN FD: construction and budget (setup).
+#include "mrqp/drivers/fd_hand_driver.hpp"
+
+namespace mrqp::drivers {
+
+std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
+                                                   std::string* error)
+{
+  auto fail = [error](const std::string& msg) {
+    if (error != nullptr) {
+      *error = "FD hand driver: " + msg;
+    }
+    return std::unique_ptr<FdHandDriver>();
+  };
+  if (buses.empty()) {
+    return fail("no bus given");
+  }
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    if (buses[i] == nullptr) {
+      return fail("bus " + std::to_string(i) + " is null");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (buses[k] == buses[i]) {
+        return fail("bus " + std::to_string(i) + " given twice");
+      }
+    }
+  }
+  if (config.boards.empty()) {
+    return fail("no board configured");
+  }
+  if (config.enabled_mode != MRQP_FW_HAND_MODE_POSITION && config.enabled_mode != MRQP_FW_HAND_MODE_TORQUE) {
+    return fail("enabled_mode must be POSITION (1) or TORQUE (2)");
+  }
+  if (config.feedback_missing_cycles == 0u || config.enable_timeout <= 0) {
+    return fail("feedback_missing_cycles and enable_timeout must be > 0");
+  }
+  std::vector<std::vector<bool>> used(buses.size(), std::vector<bool>(16, false));
+  for (std::size_t i = 0; i < config.boards.size(); ++i) {
+    const HandBoardConfig& b = config.boards[i];
+    const std::string who = "board " + std::to_string(i) + " (id " + std::to_string(b.board) + ")";
+    if (b.bus >= buses.size()) {
+      return fail(who + ": bus index " + std::to_string(b.bus) + " but only " + std::to_string(buses.size()) +
+                  " bus(es) given");
+    }
+    if (!buses[b.bus]->bus().fd_enabled()) {
+      return fail(who + ": bus " + std::to_string(b.bus) + " (" + buses[b.bus]->bus().name() +
+                  ") is not CAN FD enabled");
+    }
+    if (b.board > MRQP_FW_HAND_BOARD_MAX) {
+      return fail(who + ": board id must be 0..15");
+    }
+    if (used[b.bus][b.board]) {
+      return fail(who + ": board id used twice on bus " + std::to_string(b.bus));
+    }
+    used[b.bus][b.board] = true;
+    if (b.joints == 0u || b.joints > MRQP_FW_HAND_MAX_JOINTS) {
+      return fail(who + ": joints must be 1..32");
+    }
+    if (mrqp_fw_hand_scale_valid(&b.scale) == 0) {
+      return fail(who + ": invalid scale (each LSB finite and > 0)");
+    }
+  }
+  std::unique_ptr<FdHandDriver> p(new FdHandDriver());
+  p->config_ = config;
+  p->buses_.resize(buses.size());
+  for (std::size_t s = 0; s < buses.size(); ++s) {
+    p->buses_[s].router = buses[s];
+    p->buses_[s].board_to_index.fill(-1);
+  }
+  p->boards_.resize(config.boards.size());
+  for (std::size_t i = 0; i < config.boards.size(); ++i) {
+    Board& b = p->boards_[i];
+    b.cfg = config.boards[i];
+    b.chunks = mrqp_fw_hand_frames_needed(b.cfg.joints);
+    p->buses_[b.cfg.bus].board_to_index[b.cfg.board] = static_cast<std::int16_t>(i);
+  }
+  p->device_faults_.resize(p->boards_.size());
+  p->bus_faults_.resize(p->buses_.size());
+  for (std::size_t s = 0; s < buses.size(); ++s) {
+    if (!buses[s]->add_handler(*p)) {
+      for (std::size_t k = 0; k < s; ++k) {
+        buses[k]->remove_handler(*p);
+      }
+      return fail("bus " + std::to_string(s) + ": the router's handler table is full");
+    }
+    p->buses_[s].health.reset(*buses[s]);
+  }
+  p->report_.devices = p->device_faults_.data();
+  p->report_.device_count = p->device_faults_.size();
+  p->report_.buses = p->bus_faults_.data();
+  p->report_.bus_count = p->bus_faults_.size();
+  return p;
+}
+
+FdHandDriver::~FdHandDriver()
+{
+  for (BusSlot& b : buses_) {
+    if (b.router != nullptr) {
+      b.router->remove_handler(*this);
+    }
+  }
+}
+
+void FdHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
+{
+  for (const Board& b : boards_) {
+    if (b.cfg.bus == bus) {
+      budget.add_hand_board(b.cfg.joints);
+    }
+  }
+}
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,116 @@
+// mrqp drivers -- force/torque sensors: construction and budget (setup).
+#include "mrqp/drivers/ft_sensor_driver.hpp"
+
+namespace mrqp::drivers {
+
+std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRouter*>& buses, const FtConfig& config,
+                                                       std::string* error)
+{
+  auto fail = [error](const std::string& msg) {
+    if (error != nullptr) {
+      *error = "F/T sensor driver: " + msg;
+    }
+    return std::unique_ptr<FtSensorDriver>();
+  };
+  if (buses.empty()) {
+    return fail("no bus given");
+  }
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    if (buses[i] == nullptr) {
+      return fail("bus " + std::to_string(i) + " is null");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (buses[k] == buses[i]) {
+        return fail("bus " + std::to_string(i) + " given twice");
+      }
+    }
+  }
+  if (config.sensors.empty()) {
+    return fail("no sensor configured");
+  }
+  if (config.feedback_missing_cycles == 0u || config.tare_timeout <= 0) {
+    return fail("feedback_missing_cycles and tare_timeout must be > 0");
+  }
+  std::vector<std::vector<bool>> used(buses.size(), std::vector<bool>(128, false));
+  for (std::size_t i = 0; i < config.sensors.size(); ++i) {
+    const FtSensorConfig& s = config.sensors[i];
+    const std::string who = "sensor " + std::to_string(i) + " (node " + std::to_string(s.node) + ")";
+    if (s.bus >= buses.size()) {
+      return fail(who + ": bus index " + std::to_string(s.bus) + " but only " + std::to_string(buses.size()) +
+                  " bus(es) given");
+    }
+    if (s.node < 1u || s.node > 127u) {
+      return fail(who + ": node id must be 1..127");
+    }
+    if (used[s.bus][s.node]) {
+      return fail(who + ": node id used twice on bus " + std::to_string(s.bus));
+    }
+    used[s.bus][s.node] = true;
+    if (mrqp_fw_ft_scale_valid(&s.scale) == 0) {
+      return fail(who + ": invalid scale (counts per unit finite and > 0)");
+    }
+    if (s.variant == FtVariant::Fd && !buses[s.bus]->bus().fd_enabled()) {
+      return fail(who + ": FD variant on bus " + std::to_string(s.bus) + " (" + buses[s.bus]->bus().name() +
+                  ") which is not CAN FD enabled");
+    }
+    if (!(s.force_limit > 0.0) || !(s.moment_limit > 0.0)) {
+      return fail(who + ": force_limit and moment_limit must be > 0");
+    }
+  }
+  std::unique_ptr<FtSensorDriver> p(new FtSensorDriver());
+  p->config_ = config;
+  p->buses_.resize(buses.size());
+  for (std::size_t b = 0; b < buses.size(); ++b) {
+    p->buses_[b].router = buses[b];
+    p->buses_[b].node_to_sensor.fill(-1);
+  }
+  p->sensors_.resize(config.sensors.size());
+  for (std::size_t i = 0; i < config.sensors.size(); ++i) {
+    p->sensors_[i].cfg = config.sensors[i];
+    p->buses_[config.sensors[i].bus].node_to_sensor[config.sensors[i].node] = static_cast<std::int16_t>(i);
+    p->buses_[config.sensors[i].bus].has_sensors = true;
+  }
+  p->device_faults_.resize(p->sensors_.size());
+  p->bus_faults_.resize(p->buses_.size());
+  for (std::size_t b = 0; b < buses.size(); ++b) {
+    if (!buses[b]->add_handler(*p)) {
+      for (std::size_t k = 0; k < b; ++k) {
+        buses[k]->remove_handler(*p);
+      }
+      return fail("bus " + std::to_string(b) + ": the router's handler table is full");
+    }
+    p->buses_[b].health.reset(*buses[b]);
+  }
+  p->report_.devices = p->device_faults_.data();
+  p->report_.device_count = p->device_faults_.size();
+  p->report_.buses = p->bus_faults_.data();
+  p->report_.bus_count = p->bus_faults_.size();
+  return p;
+}
+
+FtSensorDriver::~FtSensorDriver()
+{
+  for (BusSlot& b : buses_) {
+    if (b.router != nullptr) {
+      b.router->remove_handler(*this);
+    }
+  }
+}
+
+void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
+{
+  std::uint32_t classic = 0;
+  std::uint32_t fd = 0;
+  for (const Sensor& s : sensors_) {
+    if (s.cfg.bus == bus) {
+      (s.cfg.variant == FtVariant::Fd ? fd : classic) += 1u;
+    }
+  }
+  if (config_.produce_sync && classic + fd > 0u) {
+    budget.add_sync();
+  }
+  budget.add_ft_classic(classic);
+  budget.add_ft_fd(fd);
+}
+
+}  // namespace mrqp::drivers

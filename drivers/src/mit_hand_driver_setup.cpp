@@ -1,0 +1,106 @@
+// mrqp drivers -- MIT-mode hand actuators: construction and budget (setup).
+#include <cmath>
+
+#include "mrqp/drivers/mit_hand_driver.hpp"
+
+namespace mrqp::drivers {
+
+std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter*>& buses,
+                                                     const MitHandConfig& config, std::string* error)
+{
+  auto fail = [error](const std::string& msg) {
+    if (error != nullptr) {
+      *error = "MIT hand driver: " + msg;
+    }
+    return std::unique_ptr<MitHandDriver>();
+  };
+  if (buses.empty()) {
+    return fail("no bus given");
+  }
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    if (buses[i] == nullptr) {
+      return fail("bus " + std::to_string(i) + " is null");
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (buses[k] == buses[i]) {
+        return fail("bus " + std::to_string(i) + " given twice");
+      }
+    }
+  }
+  if (config.motors.empty()) {
+    return fail("no motor configured");
+  }
+  if (config.feedback_missing_cycles == 0u || config.enable_timeout <= 0) {
+    return fail("feedback_missing_cycles and enable_timeout must be > 0");
+  }
+  std::vector<std::vector<bool>> used(buses.size(), std::vector<bool>(128, false));
+  for (std::size_t i = 0; i < config.motors.size(); ++i) {
+    const MitMotorConfig& m = config.motors[i];
+    const std::string who = "motor " + std::to_string(i) + " (id " + std::to_string(m.motor_id) + ")";
+    if (m.bus >= buses.size()) {
+      return fail(who + ": bus index " + std::to_string(m.bus) + " but only " + std::to_string(buses.size()) +
+                  " bus(es) given");
+    }
+    if (m.motor_id < MRQP_FW_MIT_MOTOR_ID_MIN || m.motor_id > MRQP_FW_MIT_MOTOR_ID_MAX) {
+      return fail(who + ": motor id must be 1..127");
+    }
+    if (used[m.bus][m.motor_id]) {
+      return fail(who + ": motor id used twice on bus " + std::to_string(m.bus));
+    }
+    used[m.bus][m.motor_id] = true;
+    if (mrqp_fw_mit_ranges_valid(&m.ranges) == 0) {
+      return fail(who + ": invalid ranges (each min < max, finite)");
+    }
+    if (std::isnan(m.position_min) || std::isnan(m.position_max) || !(m.position_min < m.position_max)) {
+      return fail(who + ": position_min must be < position_max");
+    }
+  }
+  std::unique_ptr<MitHandDriver> p(new MitHandDriver());
+  p->config_ = config;
+  p->buses_.resize(buses.size());
+  for (std::size_t s = 0; s < buses.size(); ++s) {
+    p->buses_[s].router = buses[s];
+    p->buses_[s].id_to_motor.fill(-1);
+  }
+  p->motors_.resize(config.motors.size());
+  for (std::size_t i = 0; i < config.motors.size(); ++i) {
+    p->motors_[i].cfg = config.motors[i];
+    p->buses_[config.motors[i].bus].id_to_motor[config.motors[i].motor_id] = static_cast<std::int16_t>(i);
+  }
+  p->device_faults_.resize(p->motors_.size());
+  p->bus_faults_.resize(p->buses_.size());
+  for (std::size_t s = 0; s < buses.size(); ++s) {
+    if (!buses[s]->add_handler(*p)) {
+      for (std::size_t k = 0; k < s; ++k) {
+        buses[k]->remove_handler(*p);
+      }
+      return fail("bus " + std::to_string(s) + ": the router's handler table is full");
+    }
+    p->buses_[s].health.reset(*buses[s]);
+  }
+  p->report_.devices = p->device_faults_.data();
+  p->report_.device_count = p->device_faults_.size();
+  p->report_.buses = p->bus_faults_.data();
+  p->report_.bus_count = p->bus_faults_.size();
+  return p;
+}
+
+MitHandDriver::~MitHandDriver()
+{
+  for (BusSlot& b : buses_) {
+    if (b.router != nullptr) {
+      b.router->remove_handler(*this);
+    }
+  }
+}
+
+void MitHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
+{
+  std::uint32_t n = 0;
+  for (const Motor& m : motors_) {
+    n += m.cfg.bus == bus ? 1u : 0u;
+  }
+  budget.add_mit_motors(n);
+}
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,291 @@
+// The cyclic path of every driver allocates nothing: 10,000+ control cycles of a whole robot
+// (7 arm drives and a force/torque sensor on one bus, MIT hand motors on a classic bus, a hand
+// board on a CAN FD bus, fake devices and the simulated buses included) with the global
+// allocator replaced by a counting one. Built only without sanitizers (they replace it too).
+#include <catch2/catch.hpp>
+
+#include <mrqp/drivers/drivers.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "fake_cia402_drive.hpp"
+#include "fake_devices.hpp"
+
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+extern "C" void* __libc_memalign(std::size_t, std::size_t);
+extern "C" void __libc_free(void*);
+
+namespace {
+std::atomic<long> g_count{0};
+}
+
+// Counting replacements of the C allocator, forwarding to glibc's own implementation.
+extern "C" void* malloc(std::size_t n)
+{
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t n, std::size_t size)
+{
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, size);
+}
+extern "C" void* realloc(void* p, std::size_t n)
+{
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+extern "C" void free(void* p)
+{
+  __libc_free(p);
+}
+
+// ... and of the C++ allocation functions.
+void* operator new(std::size_t n)
+{
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  void* p = __libc_malloc(n == 0 ? 1 : n);
+  if (p == nullptr) {
+    throw std::bad_alloc();
+  }
+  return p;
+}
+void* operator new[](std::size_t n)
+{
+  return ::operator new(n);
+}
+void* operator new(std::size_t n, std::align_val_t a)
+{
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  void* p = __libc_memalign(static_cast<std::size_t>(a), n == 0 ? 1 : n);
+  if (p == nullptr) {
+    throw std::bad_alloc();
+  }
+  return p;
+}
+void* operator new[](std::size_t n, std::align_val_t a)
+{
+  return ::operator new(n, a);
+}
+void operator delete(void* p) noexcept
+{
+  __libc_free(p);
+}
+void operator delete[](void* p) noexcept
+{
+  __libc_free(p);
+}
+void operator delete(void* p, std::size_t) noexcept
+{
+  __libc_free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept
+{
+  __libc_free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept
+{
+  __libc_free(p);
+}
+void operator delete[](void* p, std::align_val_t) noexcept
+{
+  __libc_free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept
+{
+  __libc_free(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept
+{
+  __libc_free(p);
+}
+
+using namespace mrqp::drivers;
+
+TEST_CASE("drivers: the counting allocator is in effect", "[drivers][realtime]")
+{
+  const long before = g_count.load();
+  auto p = std::make_unique<int>(3);
+  void* q = std::malloc(8);
+  std::free(q);
+  CHECK(g_count.load() - before == 2);
+}
+
+TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[drivers][realtime]")
+{
+  const TimeNs period = milliseconds(4);  // 250 Hz: 7 drives + a sensor fit one classic bus
+
+  // Arm bus: 7 drives (CSP), a classic force/torque sensor.
+  SimBus arm_bus;
+  SimNodeConfig mc;
+  mc.rx_queue = 1024;
+  SimNode* arm_master = arm_bus.add_node(mc);
+  std::vector<std::unique_ptr<drvtest::FakeCia402Drive>> drives;
+  ArmConfig ac;
+  ac.cycle_period = period;
+  ac.producer_heartbeat_ms = 20;
+  ac.master_node = 0x7F;
+  ac.master_heartbeat_ms = 20;
+  ac.drive_consumer_ms = 60;
+  for (std::uint8_t n = 1; n <= 7; ++n) {
+    drvtest::FakeDriveOptions o;
+    o.node = n;
+    o.initial_position = 100 * n;
+    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*arm_bus.add_node(SimNodeConfig{}), o));
+    ArmDriveConfig d;
+    d.node = n;
+    d.position_min = -3.0;
+    d.position_max = 3.0;
+    ac.drives.push_back(d);
+  }
+  drvtest::FakeFtSensor ft_fake(*arm_bus.add_node(SimNodeConfig{}), 0x30, false);
+  ft_fake.set_wrench({1.0, 2.0, 3.0, 0.1, 0.2, 0.3});
+  BusRouter arm_router(*arm_master);
+
+  // MIT hand bus: 3 motors.
+  SimBus mit_bus;
+  SimNode* mit_master = mit_bus.add_node(mc);
+  drvtest::FakeMitMotors mit_fake(*mit_bus.add_node(SimNodeConfig{}));
+  MitHandConfig hc;
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    mit_fake.add(id);
+    MitMotorConfig m;
+    m.motor_id = id;
+    hc.motors.push_back(m);
+  }
+  BusRouter mit_router(*mit_master);
+
+  // CAN FD hand bus: a 20-joint board.
+  SimBusConfig fdc;
+  fdc.data_bps = 5000000;
+  SimBus fd_bus(fdc);
+  SimNodeConfig fdm = mc;
+  fdm.fd = true;
+  SimNode* fd_master = fd_bus.add_node(fdm);
+  SimNodeConfig fdn;
+  fdn.fd = true;
+  drvtest::FakeHandBoard board_fake(*fd_bus.add_node(fdn), 0, 20);
+  FdHandConfig bc;
+  HandBoardConfig hb;
+  hb.board = 0;
+  hb.joints = 20;
+  bc.boards.push_back(hb);
+  BusRouter fd_router(*fd_master);
+
+  FtConfig fc;
+  FtSensorConfig fs;
+  fs.node = 0x30;
+  fc.sensors.push_back(fs);
+
+  std::string err;
+  auto arm = ArmDriver::create({&arm_router}, ac, &err);
+  REQUIRE(arm != nullptr);
+  auto ft = FtSensorDriver::create({&arm_router}, fc, &err);
+  REQUIRE(ft != nullptr);
+  auto mit = MitHandDriver::create({&mit_router}, hc, &err);
+  REQUIRE(mit != nullptr);
+  auto hand = FdHandDriver::create({&fd_router}, bc, &err);
+  REQUIRE(hand != nullptr);
+
+  // The start-up checks (allocate, outside the cycle).
+  BusBudget budget(BusSpec{"arm", 1000000, 0, 250.0, 0.8});
+  arm->declare_traffic(0, budget);
+  ft->declare_traffic(0, budget);
+  std::string msg;
+  REQUIRE(budget.check(&msg));
+
+  const int kCycles = 10500;
+  long allocations = 0;
+  std::uint64_t cycles_with_faults = 0;
+  std::uint32_t all_flags = 0;
+  double sink = 0.0;
+  TimeNs t = 0;
+  bool ft_started = false;
+  arm->start(t);
+  for (int k = 0; k < kCycles; ++k, t += period) {
+    const long before = g_count.load(std::memory_order_relaxed);
+
+    arm_bus.advance_to(t);
+    mit_bus.advance_to(t);
+    fd_bus.advance_to(t);
+    arm_router.poll(t);
+    mit_router.poll(t);
+    fd_router.poll(t);
+    const FaultReport& ra = arm->update(t);
+    const FaultReport& rf = ft->update(t);
+    const FaultReport& rm = mit->update(t);
+    const FaultReport& rh = hand->update(t);
+    const std::uint32_t flags = ra.flags | rf.flags | rm.flags | rh.flags;
+    all_flags |= flags;
+    cycles_with_faults += flags != 0u ? 1u : 0u;
+
+    if (!ft_started && arm->phase() == ArmPhase::Running) {
+      ft->start(t);  // the sensor samples on the arm driver's SYNC, from its first transmit on
+      ft_started = true;
+    }
+    if (k == 60) {
+      arm->request_enable(t);
+      mit->request_enable(t);
+      hand->request_enable(t);
+    }
+    if (k == 200) {
+      ft->request_tare(0, true, t);
+    }
+    const double phase = 2.0 * M_PI * static_cast<double>(k) / 500.0;
+    if (arm->all_enabled()) {
+      for (std::size_t i = 0; i < arm->drive_count(); ++i) {
+        const double target = 0.5 * std::sin(phase + static_cast<double>(i));
+        // Every 1000th cycle a NaN arrives from the "controller": refused, never sent.
+        (void)arm->set_position(i, k % 1000 == 999 && i == 3 ? std::nan("") : target);
+        sink += arm->drive(i).position;
+      }
+    }
+    if (mit->all_on()) {
+      for (std::size_t i = 0; i < mit->motor_count(); ++i) {
+        const mrqp_fw_mit_cmd c{static_cast<float>(0.2 * std::sin(phase)), 0.0f, 20.0f, 0.5f, 0.0f};
+        (void)mit->set_command(i, c);
+        sink += mit->motor(i).position;
+      }
+    }
+    if (hand->all_enabled()) {
+      for (std::size_t j = 0; j < 20; ++j) {
+        (void)hand->set_joint(0, j, static_cast<float>(0.3 * std::cos(phase)), 0.0f, 0.0f);
+        sink += hand->joint(0, j).position;
+      }
+    }
+    sink += ft->sensor(0).wrench[2];
+    if (k == 5000) {
+      arm->request_disable(t);  // and back: the whole state machine runs inside the window
+    }
+    if (k == 5100) {
+      arm->request_enable(t);
+    }
+
+    arm->transmit(t);
+    ft->transmit(t);
+    mit->transmit(t);
+    hand->transmit(t);
+
+    allocations += g_count.load(std::memory_order_relaxed) - before;
+  }
+  CHECK(allocations == 0);
+  // The run did what it should: booted, enabled, moved, and only the injected NaN were flagged.
+  CHECK(arm->phase() == ArmPhase::Running);
+  CHECK(arm->all_enabled());
+  CHECK(mit->all_on());
+  CHECK(hand->all_enabled());
+  CHECK(!ft->tare_pending(0));
+  CHECK(arm->faults().devices[3].refused_setpoints == 10u);
+  CHECK((all_flags & ~fault::kSetpointRefused) == 0u);
+  CHECK(cycles_with_faults == 10u);
+  CHECK(std::isfinite(sink));
+  CHECK(drives[3]->position() != 0);
+}
