@@ -26,6 +26,7 @@ cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-O1 -DCMAKE_
 cmake --build build/asan -j"$jobs"
 step "sanitizer tests (unit)"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions="$root/tests/lsan.supp" \
   ctest --test-dir build/asan -L unit -j"$jobs" --output-on-failure
 
 step "installed package: find_package(mrqp) from a user project"
