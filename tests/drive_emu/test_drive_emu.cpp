@@ -1,0 +1,227 @@
+// The ArmDriver against mrqp-drive-emu's emulator on a SimBus: boot, enable, closed-loop CSP
+// tracking by the joint model, heartbeat loss, YAML errors.
+#include <catch2/catch.hpp>
+#include <emu_sim.hpp>
+#include <mrqp/drivers/arm_driver.hpp>
+#include <mrqp/drivers/bus_router.hpp>
+#include <mrqp/drivers/sim_bus.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+
+using namespace mrqp::drivers;
+using namespace mrqp::drive_emu;
+
+namespace {
+
+struct Bench {
+  explicit Bench(const EmuConfig& emu_cfg)
+  {
+    SimNodeConfig mc;
+    mc.name = "master";
+    mc.rx_queue = 2048;
+    master = bus.add_node(mc);
+    SimNodeConfig ec;
+    ec.name = "drive-emu";
+    ec.tx_queue = 256;
+    emu = std::make_unique<SimDriveEmulator>(*bus.add_node(ec), emu_cfg);
+    router = std::make_unique<BusRouter>(*master);
+    ArmConfig cfg;
+    cfg.cycle_period = milliseconds(2);  // 3 drives x (RPDO, TPDO1, TPDO2) + SYNC fit in 2 ms at 1 Mbit/s
+    for (const EmuNode& n : emu_cfg.nodes) {
+      ArmDriveConfig d;
+      d.node = n.node;
+      d.scale = n.scale;
+      cfg.drives.push_back(d);
+    }
+    config = cfg;
+    arm = ArmDriver::create({router.get()}, cfg, &error);
+  }
+  const FaultReport& cycle()
+  {
+    bus.advance_to(t);
+    router->poll(t);
+    const FaultReport& r = arm->update(t);
+    flags |= r.flags;
+    arm->transmit(t);
+    t += config.cycle_period;
+    return r;
+  }
+  bool boot_and_enable()
+  {
+    arm->start(t);
+    for (int k = 0; k < 2000 && arm->phase() != ArmPhase::Running; ++k) {
+      cycle();
+    }
+    if (arm->phase() != ArmPhase::Running) {
+      return false;
+    }
+    arm->request_enable(t);
+    for (int k = 0; k < 200 && !arm->all_enabled(); ++k) {
+      cycle();
+    }
+    return arm->all_enabled();
+  }
+
+  SimBus bus;
+  SimNode* master = nullptr;
+  std::unique_ptr<SimDriveEmulator> emu;
+  std::unique_ptr<BusRouter> router;
+  ArmConfig config;
+  std::unique_ptr<ArmDriver> arm;
+  std::string error;
+  std::uint32_t flags = 0;
+  TimeNs t = 0;
+};
+
+EmuConfig three_nodes()
+{
+  EmuConfig c;
+  for (std::uint8_t n = 1; n <= 3; ++n) {
+    EmuNode e;
+    e.node = n;
+    e.scale.rated_torque_mNm = 10000;  // 10 N m rated
+    c.nodes.push_back(e);
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_emu]")
+{
+  Bench b(three_nodes());
+  REQUIRE(b.arm != nullptr);
+  REQUIRE(b.boot_and_enable());
+  CHECK((b.flags & fault::kBootFailed) == 0u);
+  // A sine per joint; the drive's PD loop and the joint model must follow it.
+  double worst = 0.0;
+  for (int k = 0; k < 1500; ++k) {
+    const double time = static_cast<double>(k) * 2e-3;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const double target = 0.3 * std::sin(2.0 * M_PI * 0.5 * time + static_cast<double>(j));
+      REQUIRE(b.arm->set_position(j, target) == SetpointResult::Ok);
+    }
+    const FaultReport& r = b.cycle();
+    REQUIRE((r.flags & (fault::kHeartbeatLost | fault::kFeedbackMissing | fault::kDeviceFault)) == 0u);
+    if (k > 250) {
+      for (std::size_t j = 0; j < 3; ++j) {
+        const double prev = 0.3 * std::sin(2.0 * M_PI * 0.5 * (time - 4e-3) + static_cast<double>(j));
+        worst = std::max(worst, std::fabs(b.arm->drive(j).position - prev));
+      }
+    }
+  }
+  CHECK(worst < 0.05);  // rad, a few cycles of lag at 1 rad/s
+  // The joint model moved (not a drive that copies the setpoint).
+  CHECK(std::fabs(b.emu->emulator().position(0)) > 0.01);
+  CHECK(b.emu->emulator().stats().syncs > 1500);
+}
+
+TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer timeout", "[drive_emu]")
+{
+  EmuConfig c = three_nodes();
+  c.nodes[1].faults.heartbeat_stop_at = milliseconds(1500);
+  Bench b(c);
+  REQUIRE(b.arm != nullptr);
+  REQUIRE(b.boot_and_enable());
+  REQUIRE(b.t < milliseconds(1500));
+  TimeNs detected = -1;
+  while (b.t < milliseconds(3000) && detected < 0) {
+    const TimeNs now = b.t;
+    const FaultReport& r = b.cycle();
+    if (r.has(fault::kHeartbeatLost)) {
+      detected = now;
+    }
+  }
+  REQUIRE(detected > 0);
+  CHECK(detected >= milliseconds(1500));
+  CHECK(detected <= milliseconds(1500) + b.config.heartbeat_timeout + milliseconds(5));
+}
+
+TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees it", "[drive_emu]")
+{
+  EmuConfig c = three_nodes();
+  c.nodes[2].faults.emcy_at = milliseconds(1200);
+  Bench b(c);
+  REQUIRE(b.boot_and_enable());
+  bool emcy = false;
+  bool fault_state = false;
+  while (b.t < milliseconds(1600)) {
+    const FaultReport& r = b.cycle();
+    emcy = emcy || r.has(fault::kEmcy);
+    fault_state = fault_state || r.has(fault::kDeviceFault);
+  }
+  CHECK(emcy);
+  CHECK(fault_state);
+}
+
+TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]")
+{
+  const std::string good = "drive_emu_good.yaml";
+  {
+    std::ofstream f(good);
+    f << "interface: vcan0\nincrements_per_rev: 131072\nrated_torque: 5\n"
+         "joint: {inertia: 0.1, damping: 0.2, torque_limit: 30}\n"
+         "nodes:\n  - 1\n  - {node: 2, inertia: 0.2, faults: {stop_heartbeat_at: 2.5, emcy_at: 1, emcy_code: 0x3210}}\n"
+         "faults: {drop_fraction: 0.01, corrupt_fraction: 0.02}\n";
+  }
+  EmuConfig c;
+  std::string err;
+  REQUIRE(load_config(good, &c, &err));
+  REQUIRE(c.nodes.size() == 2);
+  CHECK(c.nodes[0].scale.increments_per_rev == 131072u);
+  CHECK(c.nodes[0].scale.rated_torque_mNm == 5000u);
+  CHECK(c.nodes[1].joint.inertia == Approx(0.2));
+  CHECK(c.nodes[0].joint.inertia == Approx(0.1));
+  CHECK(c.nodes[1].faults.heartbeat_stop_at == milliseconds(2500));
+  CHECK(c.nodes[1].faults.emcy_code == 0x3210);
+  CHECK(c.corrupt_fraction == Approx(0.02));
+  REQUIRE(apply_fault_switch("saturate", "1@0.5", &c, &err));
+  CHECK(c.nodes[0].faults.saturate_at == milliseconds(500));
+  CHECK_FALSE(apply_fault_switch("emcy", "9@1", &c, &err));
+  CHECK(err.find("node 9") != std::string::npos);
+
+  const std::string bad = "drive_emu_bad.yaml";
+  {
+    std::ofstream f(bad);
+    f << "nodes:\n  - {node: 3, inertia: -1}\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err.find(bad) != std::string::npos);
+  CHECK(err.find("nodes[0].inertia") != std::string::npos);
+  {
+    std::ofstream f(bad);
+    f << "nodes:\n  - {node: 3, damping: abc}\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err.find("nodes[0].damping") != std::string::npos);
+  {
+    std::ofstream f(bad);
+    f << "nodes: [1, 1]\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err.find("appears twice") != std::string::npos);
+  std::remove(good.c_str());
+  std::remove(bad.c_str());
+}
+
+TEST_CASE("drive emulator: corrupted frames are counted by the driver", "[drive_emu]")
+{
+  EmuConfig faulty = three_nodes();
+  faulty.corrupt_fraction = 0.05;  // of every frame the emulator sends, boot included
+  faulty.seed = 7;
+  Bench f(faulty);
+  f.arm->start(f.t);
+  std::uint64_t corrupt = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const FaultReport& r = f.cycle();
+    for (std::size_t j = 0; j < r.device_count; ++j) {
+      corrupt += (r.devices[j].flags & fault::kCorruptFrame) != 0u ? 1u : 0u;
+    }
+  }
+  CHECK(f.emu->emulator().stats().corrupted > 0u);
+  CHECK(corrupt > 0u);
+}

@@ -1,0 +1,116 @@
+// mrqp-drive-emu -- the drive side of the CiA 402 arm protocol for a set of node ids, with a
+// simple physical model per joint and fault injection (docs: tools/drive_emu/README.md).
+//
+// DriveEmulator is transport-free: frames in via on_frame(), time moves via advance(), frames out
+// through a FrameSink. emu_sim.hpp attaches it to a SimNode (tests), main.cpp to SocketCAN.
+#pragma once
+
+#include <mrqp/drivers/time.hpp>
+#include <mrqp/firmware_if/firmware_if.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mrqp::drive_emu {
+
+using mrqp::drivers::TimeNs;
+
+constexpr TimeNs kNever = INT64_MAX;
+
+struct JointModel {
+  double inertia = 0.05;       ///< kg m^2, > 0
+  double damping = 0.05;       ///< N m s/rad, >= 0
+  double torque_limit = 20.0;  ///< N m, > 0 (motor saturation)
+  double kp = 200.0;           ///< CSP position loop inside the drive, N m/rad
+  double kd = 5.0;             ///< N m s/rad
+  double initial_position = 0.0;  ///< rad
+};
+
+struct NodeFaults {
+  TimeNs heartbeat_stop_at = kNever;  ///< stop producing the heartbeat at this time
+  TimeNs emcy_at = kNever;            ///< raise an EMCY (and go to Fault) at this time
+  std::uint16_t emcy_code = 0x2310;   ///< continuous over-current
+  TimeNs saturate_at = kNever;        ///< from this time the motor torque is stuck at +torque_limit
+};
+
+struct EmuNode {
+  std::uint8_t node = 1;
+  mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
+  JointModel joint;
+  NodeFaults faults;
+};
+
+struct EmuConfig {
+  std::vector<EmuNode> nodes;
+  std::string interface = "vcan0";
+  TimeNs step = 500000;          ///< physics integration step (ns)
+  TimeNs boot_delay = 2000000;   ///< reset -> boot-up message
+  double drop_fraction = 0.0;    ///< of the frames the emulator sends, dropped
+  double corrupt_fraction = 0.0; ///< of the frames the emulator sends, truncated to 1 byte
+  std::uint32_t seed = 1;
+  double duration_s = 0.0;       ///< 0: run until signalled
+};
+
+/// Loads a YAML configuration; on error returns false and "<file>: <field>: <problem>".
+bool load_config(const std::string& path, EmuConfig* config, std::string* error);
+/// Parses "N@T" / "N@T:code" (T in seconds) fault switches of the command line into `config`.
+bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* config, std::string* error);
+/// Validates the configuration (node ids unique 1..127, physical parameters positive).
+bool validate_config(const EmuConfig& config, const std::string& origin, std::string* error);
+
+class FrameSink {
+ public:
+  virtual void emit(const mrqp_fw_frame& frame, TimeNs now) noexcept = 0;
+
+ protected:
+  ~FrameSink() = default;
+};
+
+struct EmuStats {
+  std::uint64_t sent = 0;
+  std::uint64_t dropped = 0;
+  std::uint64_t corrupted = 0;
+  std::uint64_t syncs = 0;
+  std::uint64_t rpdos = 0;
+};
+
+class DriveEmulator {
+ public:
+  DriveEmulator(const EmuConfig& config, FrameSink& sink);
+  ~DriveEmulator();
+  DriveEmulator(const DriveEmulator&) = delete;
+  DriveEmulator& operator=(const DriveEmulator&) = delete;
+
+  /// A frame received at `now` (call advance(now) first).
+  void on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  /// Runs physics steps, heartbeats, boots and scheduled faults up to `now`.
+  void advance(TimeNs now) noexcept;
+  /// The next time advance() has something to do.
+  TimeNs next_event() const noexcept;
+
+  struct Drive;
+  std::size_t size() const noexcept;
+  double position(std::size_t i) const noexcept;  ///< rad, physical model
+  mrqp_fw_cia402_state state(std::size_t i) const noexcept;
+  mrqp_fw_nmt_state nmt(std::size_t i) const noexcept;
+  const EmuStats& stats() const noexcept { return stats_; }
+
+ private:
+  void send(const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void on_nmt(Drive& d, const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void on_sdo(Drive& d, const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void on_sync(Drive& d, TimeNs now) noexcept;
+  void step(Drive& d, double dt) noexcept;
+  double rand01() noexcept;
+
+  EmuConfig cfg_;
+  FrameSink& sink_;
+  std::vector<Drive> drives_;
+  TimeNs next_step_ = 0;
+  std::uint64_t rng_ = 1;
+  EmuStats stats_{};
+};
+
+}  // namespace mrqp::drive_emu
