@@ -1,5 +1,6 @@
 // mrqp drivers -- hand controller boards on CAN FD: construction and budget (setup).
 #include "mrqp/drivers/fd_hand_driver.hpp"
+#include "router_setup.hpp"
 
 namespace mrqp::drivers {
 
@@ -12,18 +13,8 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
     }
     return std::unique_ptr<FdHandDriver>();
   };
-  if (buses.empty()) {
-    return fail("no bus given");
-  }
-  for (std::size_t i = 0; i < buses.size(); ++i) {
-    if (buses[i] == nullptr) {
-      return fail("bus " + std::to_string(i) + " is null");
-    }
-    for (std::size_t k = 0; k < i; ++k) {
-      if (buses[k] == buses[i]) {
-        return fail("bus " + std::to_string(i) + " given twice");
-      }
-    }
+  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+    return fail(why);
   }
   if (config.boards.empty()) {
     return fail("no board configured");
@@ -76,13 +67,10 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
   }
   p->device_faults_.resize(p->boards_.size());
   p->bus_faults_.resize(p->buses_.size());
+  if (const std::string why = detail::attach_to_routers(buses, *p); !why.empty()) {
+    return fail(why);
+  }
   for (std::size_t s = 0; s < buses.size(); ++s) {
-    if (!buses[s]->add_handler(*p)) {
-      for (std::size_t k = 0; k < s; ++k) {
-        buses[k]->remove_handler(*p);
-      }
-      return fail("bus " + std::to_string(s) + ": the router's handler table is full");
-    }
     p->buses_[s].health.reset(*buses[s]);
   }
   p->report_.devices = p->device_faults_.data();

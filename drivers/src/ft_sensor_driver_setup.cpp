@@ -1,5 +1,6 @@
 // mrqp drivers -- force/torque sensors: construction and budget (setup).
 #include "mrqp/drivers/ft_sensor_driver.hpp"
+#include "router_setup.hpp"
 
 namespace mrqp::drivers {
 
@@ -12,18 +13,8 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
     }
     return std::unique_ptr<FtSensorDriver>();
   };
-  if (buses.empty()) {
-    return fail("no bus given");
-  }
-  for (std::size_t i = 0; i < buses.size(); ++i) {
-    if (buses[i] == nullptr) {
-      return fail("bus " + std::to_string(i) + " is null");
-    }
-    for (std::size_t k = 0; k < i; ++k) {
-      if (buses[k] == buses[i]) {
-        return fail("bus " + std::to_string(i) + " given twice");
-      }
-    }
+  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+    return fail(why);
   }
   if (config.sensors.empty()) {
     return fail("no sensor configured");
@@ -72,13 +63,10 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
   }
   p->device_faults_.resize(p->sensors_.size());
   p->bus_faults_.resize(p->buses_.size());
+  if (const std::string why = detail::attach_to_routers(buses, *p); !why.empty()) {
+    return fail(why);
+  }
   for (std::size_t b = 0; b < buses.size(); ++b) {
-    if (!buses[b]->add_handler(*p)) {
-      for (std::size_t k = 0; k < b; ++k) {
-        buses[k]->remove_handler(*p);
-      }
-      return fail("bus " + std::to_string(b) + ": the router's handler table is full");
-    }
     p->buses_[b].health.reset(*buses[b]);
   }
   p->report_.devices = p->device_faults_.data();

@@ -1,0 +1,47 @@
+// mrqp drivers -- set-up steps shared by the device drivers' create() (internal header; set-up
+// code, never called from the cycle).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mrqp/drivers/bus_router.hpp"
+
+namespace mrqp::drivers::detail {
+
+/// Why a driver cannot use this list of routers ("no bus given", "bus 2 is null", "bus 1 given
+/// twice"), or an empty string when it can.
+inline std::string check_routers(const std::vector<BusRouter*>& buses)
+{
+  if (buses.empty()) {
+    return "no bus given";
+  }
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    if (buses[i] == nullptr) {
+      return "bus " + std::to_string(i) + " is null";
+    }
+    for (std::size_t k = 0; k < i; ++k) {
+      if (buses[k] == buses[i]) {
+        return "bus " + std::to_string(i) + " given twice";
+      }
+    }
+  }
+  return {};
+}
+
+/// Adds `handler` to every router. When a router's table is full, removes it from the routers
+/// already done and returns the reason naming the bus; an empty string on success.
+inline std::string attach_to_routers(const std::vector<BusRouter*>& buses, FrameHandler& handler)
+{
+  for (std::size_t s = 0; s < buses.size(); ++s) {
+    if (!buses[s]->add_handler(handler)) {
+      for (std::size_t k = 0; k < s; ++k) {
+        buses[k]->remove_handler(handler);
+      }
+      return "bus " + std::to_string(s) + ": the router's handler table is full";
+    }
+  }
+  return {};
+}
+
+}  // namespace mrqp::drivers::detail
