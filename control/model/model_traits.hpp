@@ -25,6 +25,8 @@
     using ReferenceFrame = NS::ReferenceFrame;                                                   \
     static const auto& jointNames() { return NS::joint_names; }                                  \
     static const auto& frameNames() { return NS::frame_names; }                                  \
+    static const auto& bodyNames() { return NS::body_names; }                                    \
+    static const auto& frameBody() { return NS::frame_body; }                                    \
     static const auto& qLower() { return NS::q_lower; }                                          \
     static const auto& qUpper() { return NS::q_upper; }                                          \
     static const auto& vLimit() { return NS::v_limit; }                                          \

@@ -1,0 +1,24 @@
+// Settings and fixed capacity of a MultiRobotProblem (docs/problem.md).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "qp/qp_solver.hpp"
+
+namespace mrqp::problem {
+
+struct ProblemSettings {
+  double dt = 0.001;  ///< control period Δt of eq. 22–24 and of the dampers, s
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
+  int max_tasks = 32;                 ///< tasks that may exist at once
+  int max_contacts = 16;              ///< contacts that may exist at once
+  int max_contact_generators = 256;   ///< λ variables of all contacts together
+  int max_com_dampers = 4;
+  int max_joint_inequalities = 8;
+  double contact_stiffness = 100.0;   ///< Baumgarte gains holding established contacts together
+  double contact_damping = 20.0;
+  double regularisation = 1e-6;       ///< weight of ‖q̈‖² + ‖λ‖², keeps the Hessian definite
+  qp::QpSettings qp;
+};
+
+}  // namespace mrqp::problem

@@ -1,0 +1,838 @@
+// Scene files (docs/scenes.md): YAML → SceneSpec. Every error names file, 1-based line and the
+// dotted path of the offending key.
+#include "scene/scene_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace mrqp::scene {
+
+namespace {
+
+std::string child(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string item(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
+int lineOf(const YAML::Node& n) {
+  const YAML::Mark m = n.Mark();
+  return m.is_null() ? 1 : m.line + 1;
+}
+
+std::optional<double> toDouble(const YAML::Node& n) {
+  if (!n.IsScalar()) {
+    return std::nullopt;
+  }
+  try {
+    return n.as<double>();
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<long long> toInteger(const YAML::Node& n) {
+  if (!n.IsScalar()) {
+    return std::nullopt;
+  }
+  try {
+    return n.as<long long>();
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
+  }
+}
+
+/// A number too large for a double, which yaml-cpp does not convert.
+bool isOverflow(const YAML::Node& n) {
+  if (!n.IsScalar() || n.Scalar().empty()) {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(n.Scalar().c_str(), &end);
+  return *end == '\0' && errno == ERANGE && std::isinf(v);
+}
+
+/// How a value is shown after "got": numbers as written, other text quoted.
+std::string describe(const YAML::Node& n) {
+  if (n.IsNull()) {
+    return "null";
+  }
+  if (n.IsSequence()) {
+    return "a list of " + std::to_string(n.size());
+  }
+  if (n.IsMap()) {
+    return "a map";
+  }
+  return toDouble(n) || isOverflow(n) ? n.Scalar() : "\"" + n.Scalar() + "\"";
+}
+
+std::string formatNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+enum class Bound { Any, NonNegative, Positive };
+
+std::string expectedNumber(Bound b) {
+  switch (b) {
+    case Bound::NonNegative:
+      return "a number >= 0";
+    case Bound::Positive:
+      return "a number > 0";
+    case Bound::Any:
+      break;
+  }
+  return "a number";
+}
+
+struct Entry {
+  std::string key;
+  YAML::Node key_node;
+  YAML::Node value;
+};
+
+/// Typed access to YAML values; every failure throws SceneError naming file, line and field.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  const std::string& file() const { return file_; }
+  Source source(const YAML::Node& n) const { return Source{file_, lineOf(n)}; }
+
+  [[noreturn]] void fail(int line, const std::string& field, const std::string& message) const {
+    throw SceneError(file_ + ":" + std::to_string(line) + ": " +
+                     (field.empty() ? std::string("(top level)") : field) + ": " + message);
+  }
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& field,
+                         const std::string& message) const {
+    fail(lineOf(at), field, message);
+  }
+
+  double number(const YAML::Node& n, const std::string& field, Bound b = Bound::Any) const {
+    const std::optional<double> v = toDouble(n);
+    if ((v && !std::isfinite(*v)) || isOverflow(n)) {
+      fail(n, field, "expected a finite number, got " + describe(n));
+    }
+    if (!v || (b == Bound::NonNegative && !(*v >= 0.0)) || (b == Bound::Positive && !(*v > 0.0))) {
+      fail(n, field, "expected " + expectedNumber(b) + ", got " + describe(n));
+    }
+    return *v;
+  }
+
+  int integer(const YAML::Node& n, const std::string& field, int lo, int hi = INT_MAX) const {
+    const std::optional<long long> v = toInteger(n);
+    if (!v || *v < lo || *v > hi) {
+      const std::string expected =
+          lo == 0 && hi == 1 ? "0 or 1"
+          : hi == INT_MAX    ? "an integer >= " + std::to_string(lo)
+                             : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+      fail(n, field, "expected " + expected + ", got " + describe(n));
+    }
+    return static_cast<int>(*v);
+  }
+
+  bool boolean(const YAML::Node& n, const std::string& field) const {
+    if (n.IsScalar()) {
+      try {
+        return n.as<bool>();
+      } catch (const YAML::Exception&) {
+      }
+    }
+    fail(n, field, "expected true or false, got " + describe(n));
+  }
+
+  std::string name(const YAML::Node& n, const std::string& field) const {
+    if (!n.IsScalar() || n.Scalar().empty()) {
+      fail(n, field, "expected a name, got " + describe(n));
+    }
+    return n.Scalar();
+  }
+
+  Eigen::VectorXd numbers(const YAML::Node& n, const std::string& field, int size) const {
+    if (!n.IsSequence() || static_cast<int>(n.size()) != size) {
+      fail(n, field, "expected a list of " + std::to_string(size) + (size == 1 ? " number" : " numbers") +
+                         ", got " + describe(n));
+    }
+    Eigen::VectorXd v(size);
+    for (int i = 0; i < size; ++i) {
+      v(i) = number(n[static_cast<std::size_t>(i)], item(field, static_cast<std::size_t>(i)));
+    }
+    return v;
+  }
+
+  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& field) const {
+    return numbers(n, field, 3);
+  }
+
+  /// The items of a list; null reads as an empty list.
+  std::vector<YAML::Node> list(const YAML::Node& n, const std::string& field) const {
+    if (n.IsNull()) {
+      return {};
+    }
+    if (!n.IsSequence()) {
+      fail(n, field, "expected a list, got " + describe(n));
+    }
+    std::vector<YAML::Node> out;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      out.push_back(*it);
+    }
+    return out;
+  }
+
+  /// A list of distinct names.
+  std::vector<std::string> names(const YAML::Node& n, const std::string& field) const {
+    std::vector<std::string> out;
+    const std::vector<YAML::Node> items = list(n, field);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      std::string s = name(items[i], item(field, i));
+      if (std::find(out.begin(), out.end(), s) != out.end()) {
+        fail(items[i], item(field, i), "'" + s + "' is listed twice");
+      }
+      out.push_back(std::move(s));
+    }
+    return out;
+  }
+
+  /// The entries of a map in file order; null reads as an empty map. Keys must be distinct.
+  std::vector<Entry> entries(const YAML::Node& n, const std::string& field) const {
+    if (n.IsNull()) {
+      return {};
+    }
+    if (!n.IsMap()) {
+      fail(n, field, "expected a map, got " + describe(n));
+    }
+    std::vector<Entry> out;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      const YAML::Node key = it->first;
+      if (!key.IsScalar()) {
+        fail(key, field, "expected a name as key, got " + describe(key));
+      }
+      for (const Entry& e : out) {
+        if (e.key == key.Scalar()) {
+          fail(key, child(field, e.key),
+               "duplicate key (first at line " + std::to_string(lineOf(e.key_node)) + ")");
+        }
+      }
+      out.push_back(Entry{key.Scalar(), key, it->second});
+    }
+    return out;
+  }
+
+  /// A map of names to numbers (initial joint positions, posture targets).
+  std::map<std::string, double> numberMap(const YAML::Node& n, const std::string& field) const {
+    std::map<std::string, double> out;
+    for (const Entry& e : entries(n, field)) {
+      out[e.key] = number(e.value, child(field, e.key));
+    }
+    return out;
+  }
+
+ private:
+  std::string file_;
+};
+
+/// A YAML map with a fixed set of allowed keys: any other key is an error.
+class Map {
+ public:
+  Map(const Reader& r, const YAML::Node& n, std::string path, std::initializer_list<const char*> keys)
+      : r_(r), node_(n), path_(std::move(path)), entries_(r.entries(n, path_)) {
+    for (const Entry& e : entries_) {
+      const bool known = std::any_of(keys.begin(), keys.end(),
+                                     [&](const char* k) { return e.key == k; });
+      if (!known) {
+        r_.fail(e.key_node, at(e.key), "unknown key");
+      }
+    }
+  }
+
+  const Reader& reader() const { return r_; }
+  const YAML::Node& node() const { return node_; }
+  const std::string& path() const { return path_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+  std::string at(const std::string& key) const { return child(path_, key); }
+  Source source() const { return r_.source(node_); }
+
+  const YAML::Node* find(const std::string& key) const {
+    for (const Entry& e : entries_) {
+      if (e.key == key) {
+        return &e.value;
+      }
+    }
+    return nullptr;
+  }
+  const Entry* entry(const std::string& key) const {
+    for (const Entry& e : entries_) {
+      if (e.key == key) {
+        return &e;
+      }
+    }
+    return nullptr;
+  }
+  bool has(const std::string& key) const { return find(key) != nullptr; }
+
+  const YAML::Node& require(const std::string& key) const {
+    const YAML::Node* n = find(key);
+    if (n == nullptr) {
+      r_.fail(node_, path_, "missing required field '" + key + "'");
+    }
+    return *n;
+  }
+
+  std::string name(const std::string& key) const { return r_.name(require(key), at(key)); }
+  double number(const std::string& key, Bound b, double fallback) const {
+    const YAML::Node* n = find(key);
+    return n != nullptr ? r_.number(*n, at(key), b) : fallback;
+  }
+  int integer(const std::string& key, int lo, int hi, int fallback) const {
+    const YAML::Node* n = find(key);
+    return n != nullptr ? r_.integer(*n, at(key), lo, hi) : fallback;
+  }
+  bool boolean(const std::string& key, bool fallback) const {
+    const YAML::Node* n = find(key);
+    return n != nullptr ? r_.boolean(*n, at(key)) : fallback;
+  }
+  Eigen::Vector3d vec3(const std::string& key, const Eigen::Vector3d& fallback) const {
+    const YAML::Node* n = find(key);
+    return n != nullptr ? r_.vec3(*n, at(key)) : fallback;
+  }
+
+  /// Rejects `key` when it is present: `why` says why it does not apply here.
+  void forbid(const std::string& key, const std::string& why) const {
+    if (const Entry* e = entry(key)) {
+      r_.fail(e->key_node, at(key), why);
+    }
+  }
+
+ private:
+  const Reader& r_;
+  YAML::Node node_;
+  std::string path_;
+  std::vector<Entry> entries_;
+};
+
+/// Names must be distinct within one kind of element (entities, contacts, tasks, ...).
+class UniqueNames {
+ public:
+  UniqueNames(const Reader& r, const char* what) : r_(r), what_(what) {}
+  void add(const std::string& name, const YAML::Node& at, const std::string& field) {
+    const auto [it, inserted] = lines_.emplace(name, lineOf(at));
+    if (!inserted) {
+      r_.fail(at, field, "duplicate " + what_ + " '" + name + "' (first at line " +
+                             std::to_string(it->second) + ")");
+    }
+  }
+
+ private:
+  const Reader& r_;
+  std::string what_;
+  std::map<std::string, int> lines_;
+};
+
+// ---- settings ----------------------------------------------------------------------------------
+
+SettingsSpec readSettings(const Reader& r, const YAML::Node* n) {
+  SettingsSpec s;
+  s.source = Source{r.file(), 1};
+  if (n == nullptr) {
+    return s;
+  }
+  const Map m(r, *n, "settings",
+              {"dt", "duration", "gravity", "max_tasks", "max_contacts", "max_contact_generators",
+               "contact_stiffness", "contact_damping", "regularisation"});
+  s.source = m.source();
+  s.dt = m.number("dt", Bound::Positive, s.dt);
+  s.duration = m.number("duration", Bound::Positive, s.duration);
+  s.gravity = m.vec3("gravity", s.gravity);
+  s.max_tasks = m.integer("max_tasks", 1, INT_MAX, s.max_tasks);
+  s.max_contacts = m.integer("max_contacts", 1, INT_MAX, s.max_contacts);
+  s.max_contact_generators = m.integer("max_contact_generators", 1, INT_MAX, s.max_contact_generators);
+  s.contact_stiffness = m.number("contact_stiffness", Bound::NonNegative, s.contact_stiffness);
+  s.contact_damping = m.number("contact_damping", Bound::NonNegative, s.contact_damping);
+  s.regularisation = m.number("regularisation", Bound::Positive, s.regularisation);
+  return s;
+}
+
+// ---- entities ----------------------------------------------------------------------------------
+
+PoseSpec readPose(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"xyz", "rpy"});
+  PoseSpec p;
+  p.xyz = m.vec3("xyz", p.xyz);
+  p.rpy = m.vec3("rpy", p.rpy);
+  return p;
+}
+
+/// [ixx, iyy, izz] or [ixx, ixy, ixz, iyy, iyz, izz]; symmetric positive definite.
+Eigen::Matrix3d readInertia(const Reader& r, const YAML::Node& n, const std::string& path) {
+  if (!n.IsSequence() || (n.size() != 3 && n.size() != 6)) {
+    r.fail(n, path, "expected [ixx, iyy, izz] or [ixx, ixy, ixz, iyy, iyz, izz], got " + describe(n));
+  }
+  const Eigen::VectorXd v = r.numbers(n, path, static_cast<int>(n.size()));
+  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+  if (v.size() == 3) {
+    I.diagonal() = v;
+  } else {
+    I << v(0), v(1), v(2), v(1), v(3), v(4), v(2), v(4), v(5);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I, Eigen::EigenvaluesOnly);
+  const double smallest = eig.eigenvalues().minCoeff();
+  if (!(smallest > 0.0)) {
+    r.fail(n, path, "not positive definite (smallest eigenvalue " + formatNumber(smallest) + ")");
+  }
+  return I;
+}
+
+std::map<std::string, SpringSpec> readSprings(const Reader& r, const YAML::Node& n,
+                                              const std::string& path) {
+  std::map<std::string, SpringSpec> out;
+  for (const Entry& e : r.entries(n, path)) {
+    const Map m(r, e.value, child(path, e.key), {"stiffness", "damping", "offset"});
+    SpringSpec s;
+    s.stiffness = r.number(m.require("stiffness"), m.at("stiffness"), Bound::NonNegative);
+    s.damping = m.number("damping", Bound::NonNegative, 0.0);
+    s.offset = m.number("offset", Bound::Any, 0.0);
+    s.source = r.source(e.key_node);
+    out[e.key] = s;
+  }
+  return out;
+}
+
+void readActuation(const Map& m, EntitySpec* e) {
+  const Reader& r = m.reader();
+  if (const YAML::Node* a = m.find("actuation")) {
+    e->actuation = r.name(*a, m.at("actuation"));
+    if (e->actuation != "all" && e->actuation != "none" && e->actuation != "list") {
+      r.fail(*a, m.at("actuation"), "expected all, none or list, got " + describe(*a));
+    }
+  }
+  if (e->actuation == "list") {
+    e->actuated_joints = r.names(m.require("actuated"), m.at("actuated"));
+  } else {
+    m.forbid("actuated", "only used with actuation: list");
+  }
+  if (const YAML::Node* p = m.find("passive")) {
+    e->passive_joints = r.names(*p, m.at("passive"));
+    for (const std::string& j : e->passive_joints) {
+      if (std::find(e->actuated_joints.begin(), e->actuated_joints.end(), j) !=
+          e->actuated_joints.end()) {
+        r.fail(*p, m.at("passive"), "joint '" + j + "' is also listed in 'actuated'");
+      }
+    }
+  }
+}
+
+EntitySpec readEntity(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path,
+              {"name", "model", "pose", "q", "actuation", "actuated", "passive", "springs", "mass",
+               "com", "inertia"});
+  EntitySpec e;
+  e.source = m.source();
+  e.name = m.name("name");
+  if (e.name == "ground") {
+    r.fail(m.require("name"), m.at("name"), "'ground' is reserved for the environment");
+  }
+  e.model = m.name("model");
+  if (const YAML::Node* p = m.find("pose")) {
+    e.pose = readPose(r, *p, m.at("pose"));
+  }
+  if (e.model == "rigid_object") {
+    for (const char* key : {"q", "actuation", "actuated", "passive", "springs"}) {
+      m.forbid(key, "not used by a rigid_object (it has no joints)");
+    }
+    e.object.mass = r.number(m.require("mass"), m.at("mass"), Bound::Positive);
+    e.object.com = m.vec3("com", e.object.com);
+    e.object.inertia = readInertia(r, m.require("inertia"), m.at("inertia"));
+    return e;
+  }
+  for (const char* key : {"mass", "com", "inertia"}) {
+    m.forbid(key, "only used with model: rigid_object");
+  }
+  if (const YAML::Node* q = m.find("q")) {
+    e.q = r.numberMap(*q, m.at("q"));
+  }
+  readActuation(m, &e);
+  if (const YAML::Node* s = m.find("springs")) {
+    e.springs = readSprings(r, *s, m.at("springs"));
+  }
+  return e;
+}
+
+// ---- contacts ----------------------------------------------------------------------------------
+
+void readOther(const Reader& r, const YAML::Node& n, const std::string& path, ContactSpec* c) {
+  if (n.IsScalar()) {
+    if (n.Scalar() != "ground") {
+      r.fail(n, path, "expected ground or a map {entity, frame}, got " + describe(n));
+    }
+    return;
+  }
+  if (!n.IsMap()) {
+    r.fail(n, path, "expected ground or a map {entity, frame}, got " + describe(n));
+  }
+  const Map m(r, n, path, {"entity", "frame"});
+  c->other_entity = m.name("entity");
+  c->other_frame = m.name("frame");
+  if (c->other_entity == "ground") {
+    r.fail(m.require("entity"), m.at("entity"), "write other: ground for the environment");
+  }
+  if (c->other_entity == c->entity && c->other_frame == c->frame) {
+    r.fail(n, path, "a frame cannot be in contact with itself");
+  }
+}
+
+std::vector<Eigen::Vector3d> readPoints(const Reader& r, const YAML::Node& n,
+                                        const std::string& path) {
+  if (!n.IsSequence() || n.size() < 1 || n.size() > 8) {
+    r.fail(n, path, "expected a list of 1 to 8 points, got " + describe(n));
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    points.push_back(r.vec3(n[i], item(path, i)));
+  }
+  return points;
+}
+
+ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path,
+              {"name", "entity", "frame", "other", "points", "normal", "friction", "generators",
+               "active"});
+  ContactSpec c;
+  c.source = m.source();
+  c.name = m.name("name");
+  c.entity = m.name("entity");
+  c.frame = m.name("frame");
+  readOther(r, m.require("other"), m.at("other"), &c);
+  c.points = readPoints(r, m.require("points"), m.at("points"));
+  if (const YAML::Node* nn = m.find("normal")) {
+    const Eigen::Vector3d normal = r.vec3(*nn, m.at("normal"));
+    if (!(normal.norm() > 1e-12)) {
+      r.fail(*nn, m.at("normal"), "expected a non-zero vector");
+    }
+    c.normal = normal.normalized();
+  }
+  c.friction = m.number("friction", Bound::Positive, c.friction);
+  c.generators = m.integer("generators", 3, 16, c.generators);
+  c.active = m.boolean("active", c.active);
+  return c;
+}
+
+// ---- tasks -------------------------------------------------------------------------------------
+
+struct TaskKindInfo {
+  const char* type;
+  TaskKind kind;
+  int size;             // entries of dims and target; -1: any
+  const char* keys[4];  // keys used beyond the common ones
+};
+
+const TaskKindInfo kTaskKinds[] = {
+    {"posture", TaskKind::Posture, -1, {"entity", "target", nullptr, nullptr}},
+    {"com", TaskKind::Com, 3, {"entity", "entities", "target", nullptr}},
+    {"frame_position", TaskKind::FramePosition, 3, {"entity", "frame", "point", "target"}},
+    {"frame_orientation", TaskKind::FrameOrientation, 3, {"entity", "frame", "target", nullptr}},
+    {"frame_pose", TaskKind::FramePose, 6, {"entity", "frame", "point", "target"}},
+    {"joint", TaskKind::JointTarget, 1, {"entity", "joint", "target", nullptr}},
+    {"force", TaskKind::ContactForce, 3, {"contact", "target", nullptr, nullptr}},
+    {"force_min", TaskKind::ForceMinimisation, -1, {"contact", nullptr, nullptr, nullptr}},
+};
+
+bool taskUsesKey(const TaskKindInfo& k, const std::string& key) {
+  static const char* const common[] = {"name", "type", "weight", "stiffness", "damping", "dims",
+                                       "active"};
+  const auto is = [&](const char* c) { return c != nullptr && key == c; };
+  return std::any_of(std::begin(common), std::end(common), is) ||
+         std::any_of(std::begin(k.keys), std::end(k.keys), is);
+}
+
+const TaskKindInfo& readTaskKind(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const std::string type = r.name(n, path);
+  for (const TaskKindInfo& k : kTaskKinds) {
+    if (type == k.type) {
+      return k;
+    }
+  }
+  r.fail(n, path,
+         "expected posture, com, frame_position, frame_orientation, frame_pose, joint, force or "
+         "force_min, got " + describe(n));
+}
+
+std::vector<int> readDims(const Reader& r, const YAML::Node& n, const std::string& path,
+                          const TaskKindInfo& k) {
+  const std::vector<YAML::Node> items = r.list(n, path);
+  const int count = static_cast<int>(items.size());
+  if (k.size >= 0 && count != k.size) {
+    r.fail(n, path, "expected " + std::to_string(k.size) + " entries for a " + k.type +
+                        " task, got " + std::to_string(count));
+  }
+  if (count == 0 && k.kind != TaskKind::ForceMinimisation) {
+    r.fail(n, path, "expected at least one entry");
+  }
+  std::vector<int> dims;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    dims.push_back(r.integer(items[i], item(path, i), 0, 1));
+  }
+  return dims;
+}
+
+void readTarget(const Reader& r, const YAML::Node& n, const std::string& path,
+                const TaskKindInfo& k, TaskSpec* t) {
+  if (k.kind == TaskKind::Posture) {
+    t->posture_target = r.numberMap(n, path);
+  } else if (k.kind == TaskKind::JointTarget && n.IsScalar()) {
+    t->target = Eigen::VectorXd::Constant(1, r.number(n, path));
+  } else {
+    t->target = r.numbers(n, path, k.size);
+  }
+}
+
+/// What the task acts on: entity or entities, frame and point, joint, or contact.
+void readTaskSubject(const Map& m, const TaskKindInfo& k, TaskSpec* t) {
+  const Reader& r = m.reader();
+  if (k.kind == TaskKind::Com && m.has("entities")) {
+    m.forbid("entity", "give either 'entity' or 'entities', not both");
+    t->entities = r.names(m.require("entities"), m.at("entities"));
+    if (t->entities.empty()) {
+      r.fail(m.require("entities"), m.at("entities"), "expected at least one entity");
+    }
+  } else if (k.kind != TaskKind::ContactForce && k.kind != TaskKind::ForceMinimisation) {
+    t->entities.push_back(m.name("entity"));
+  }
+  switch (k.kind) {
+    case TaskKind::FramePosition:
+    case TaskKind::FrameOrientation:
+    case TaskKind::FramePose:
+      t->frame = m.name("frame");
+      t->point = m.vec3("point", t->point);
+      break;
+    case TaskKind::JointTarget:
+      t->joint = m.name("joint");
+      break;
+    case TaskKind::ContactForce:
+      t->contact = m.name("contact");
+      break;
+    case TaskKind::ForceMinimisation:  // without a contact: every contact's forces
+      if (m.has("contact")) t->contact = m.name("contact");
+      break;
+    case TaskKind::Posture:
+    case TaskKind::Com:
+      break;
+  }
+}
+
+TaskSpec readTask(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path,
+              {"name", "type", "entity", "entities", "frame", "point", "joint", "contact",
+               "weight", "stiffness", "damping", "dims", "target", "active"});
+  TaskSpec t;
+  t.source = m.source();
+  t.name = m.name("name");
+  const TaskKindInfo& k = readTaskKind(r, m.require("type"), m.at("type"));
+  t.kind = k.kind;
+  for (const Entry& e : m.entries()) {
+    if (!taskUsesKey(k, e.key)) {
+      r.fail(e.key_node, m.at(e.key), std::string("not used by a ") + k.type + " task");
+    }
+  }
+  readTaskSubject(m, k, &t);
+  t.weight = m.number("weight", Bound::NonNegative, t.weight);
+  t.stiffness = m.number("stiffness", Bound::NonNegative, t.stiffness);
+  if (m.has("damping")) {
+    t.damping = m.number("damping", Bound::NonNegative, 0.0);
+  }
+  if (const YAML::Node* d = m.find("dims")) {
+    t.dims = readDims(r, *d, m.at("dims"), k);
+  }
+  if (const YAML::Node* target = m.find("target")) {
+    readTarget(r, *target, m.at("target"), k, &t);
+  }
+  t.active = m.boolean("active", t.active);
+  return t;
+}
+
+// ---- velocity dampers --------------------------------------------------------------------------
+
+/// interaction > security >= 0 (m or rad), damping > 0.
+void readDamperGains(const Map& m, double* interaction, double* security, double* damping) {
+  *security = m.number("security", Bound::NonNegative, *security);
+  *interaction = m.number("interaction", Bound::Any, *interaction);
+  if (!(*interaction > *security)) {
+    const Reader& r = m.reader();
+    if (const YAML::Node* n = m.find("interaction")) {
+      r.fail(*n, m.at("interaction"),
+             "expected a number > security (" + formatNumber(*security) + "), got " + describe(*n));
+    }
+    r.fail(m.require("security"), m.at("security"),
+           "expected a number < interaction (" + formatNumber(*interaction) + "), got " +
+               describe(m.require("security")));
+  }
+  *damping = m.number("damping", Bound::Positive, *damping);
+}
+
+ComDamperSpec readComDamper(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"entity", "interaction", "security", "damping"});
+  ComDamperSpec d;
+  d.source = m.source();
+  d.entity = m.name("entity");
+  readDamperGains(m, &d.interaction, &d.security, &d.damping);
+  return d;
+}
+
+JointInequalitySpec::Term readTerm(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"entity", "joint", "coeff"});
+  JointInequalitySpec::Term t;
+  t.entity = m.name("entity");
+  t.joint = m.name("joint");
+  t.coeff = m.number("coeff", Bound::Any, t.coeff);
+  return t;
+}
+
+JointInequalitySpec readJointInequality(const Reader& r, const YAML::Node& n,
+                                        const std::string& path) {
+  const Map m(r, n, path, {"name", "terms", "upper", "interaction", "security", "damping"});
+  JointInequalitySpec j;
+  j.source = m.source();
+  if (m.has("name")) {
+    j.name = m.name("name");
+  }
+  const YAML::Node& terms = m.require("terms");
+  const std::vector<YAML::Node> items = r.list(terms, m.at("terms"));
+  if (items.empty()) {
+    r.fail(terms, m.at("terms"), "expected at least one term");
+  }
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const JointInequalitySpec::Term t = readTerm(r, items[i], item(m.at("terms"), i));
+    for (const JointInequalitySpec::Term& u : j.terms) {
+      if (u.entity == t.entity && u.joint == t.joint) {
+        r.fail(items[i], item(m.at("terms"), i),
+               "joint '" + t.joint + "' of '" + t.entity + "' appears twice");
+      }
+    }
+    j.terms.push_back(t);
+  }
+  j.upper = r.number(m.require("upper"), m.at("upper"));
+  readDamperGains(m, &j.interaction, &j.security, &j.damping);
+  return j;
+}
+
+// ---- the file ----------------------------------------------------------------------------------
+
+YAML::Node fieldOf(const YAML::Node& map, const char* key) { return map[key]; }
+
+/// Reads every item of the top-level list `key` with `read`; `unique` (may be null) names the
+/// field of each item that must be distinct, and `what` describes it in the message.
+template <class Spec, class Read, class KeyOf>
+std::vector<Spec> readList(const Reader& r, const Map& top, const char* key, Read read,
+                           const char* unique, const char* what, KeyOf keyOf) {
+  std::vector<Spec> out;
+  const YAML::Node* n = top.find(key);
+  if (n == nullptr) {
+    return out;
+  }
+  UniqueNames seen(r, what);
+  const std::vector<YAML::Node> items = r.list(*n, key);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string path = item(key, i);
+    out.push_back(read(r, items[i], path));
+    const std::string k = keyOf(out.back());
+    if (unique != nullptr && !k.empty()) {
+      seen.add(k, fieldOf(items[i], unique), child(path, unique));
+    }
+  }
+  return out;
+}
+
+SceneSpec readScene(const Reader& r, const YAML::Node& root) {
+  if (!root.IsMap() && !root.IsNull()) {
+    r.fail(root, "", "expected a map, got " + describe(root));
+  }
+  const Map top(r, root, "",
+                {"settings", "entities", "contacts", "tasks", "com_dampers", "joint_inequalities"});
+  SceneSpec s;
+  s.file = r.file();
+  s.settings = readSettings(r, top.find("settings"));
+  const YAML::Node& entities = top.require("entities");
+  if (r.list(entities, "entities").empty()) {
+    r.fail(entities, "entities", "expected at least one entity");
+  }
+  const auto name = [](const auto& spec) { return spec.name; };
+  s.entities = readList<EntitySpec>(r, top, "entities", readEntity, "name", "entity name", name);
+  s.contacts = readList<ContactSpec>(r, top, "contacts", readContact, "name", "contact name", name);
+  s.tasks = readList<TaskSpec>(r, top, "tasks", readTask, "name", "task name", name);
+  s.com_dampers = readList<ComDamperSpec>(r, top, "com_dampers", readComDamper, "entity",
+                                          "com_damper for entity",
+                                          [](const ComDamperSpec& d) { return d.entity; });
+  s.joint_inequalities = readList<JointInequalitySpec>(
+      r, top, "joint_inequalities", readJointInequality, "name", "joint inequality name", name);
+  return s;
+}
+
+[[noreturn]] void yamlError(const std::string& file, const YAML::Exception& e) {
+  const int line = e.mark.is_null() ? 1 : e.mark.line + 1;
+  throw SceneError(file + ":" + std::to_string(line) + ": yaml: " + e.msg);
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+SceneSpec loadSceneString(const std::string& text, const std::string& file_name_for_messages) {
+  const Reader r(file_name_for_messages);
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    yamlError(file_name_for_messages, e);
+  }
+  if (documents.empty()) {
+    r.fail(1, "", "missing required field 'entities'");
+  }
+  if (documents.size() > 1) {
+    r.fail(documents[1], "", "expected one YAML document, found " +
+                                 std::to_string(documents.size()));
+  }
+  try {
+    return readScene(r, documents.front());
+  } catch (const YAML::Exception& e) {
+    yamlError(file_name_for_messages, e);
+  }
+}
+
+SceneSpec loadSceneFile(const std::string& path) {
+  const std::unique_ptr<std::FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
+  if (!f) {
+    throw SceneError(path + ": cannot open: " + std::strerror(errno));
+  }
+  std::string text;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, f.get())) > 0) {
+    text.append(buffer, n);
+  }
+  if (std::ferror(f.get()) != 0) {
+    throw SceneError(path + ": cannot open: " + std::strerror(errno));
+  }
+  return loadSceneString(text, path);
+}
+
+}  // namespace mrqp::scene
