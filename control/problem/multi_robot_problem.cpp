@@ -472,6 +472,7 @@ void MultiRobotProblem::assembleBounds() noexcept {
   xl.setConstant(-kInf);
   xu.setConstant(kInf);
   const double dt = settings_.dt;
+  const double T = std::max(dt, settings_.joint_limit_horizon);
   for (int i = 0; i < entityCount(); ++i) {
     const Entity& e = entity(i);
     const int o = velocityOffset(i);
@@ -483,10 +484,10 @@ void MultiRobotProblem::assembleBounds() noexcept {
         lo = (-vmax - v) / dt;
         hi = (vmax - v) / dt;
       }
-      // (23) for the semi-implicit Euler step q⁺ = q + (v + q̈Δt)Δt used to integrate.
+      // (23) over the look-ahead T, for the semi-implicit Euler step q⁺ = q + (v + q̈T)T.
       double plo = -kInf, phi = kInf;
-      if (std::isfinite(e.qLower()(k))) plo = (e.qLower()(k) - q - v * dt) / (dt * dt);
-      if (std::isfinite(e.qUpper()(k))) phi = (e.qUpper()(k) - q - v * dt) / (dt * dt);
+      if (std::isfinite(e.qLower()(k))) plo = (e.qLower()(k) - q - v * T) / (T * T);
+      if (std::isfinite(e.qUpper()(k))) phi = (e.qUpper()(k) - q - v * T) / (T * T);
       if (std::max(lo, plo) <= std::min(hi, phi)) {
         lo = std::max(lo, plo);
         hi = std::min(hi, phi);
@@ -517,7 +518,9 @@ void MultiRobotProblem::assembleDampers() noexcept {
     }
     dm.polygon.build();
     const Eigen::Vector2d cxy = e.com().head<2>();
-    const Eigen::Vector2d vxy = (e.comJacobian() * e.v()).head<2>();
+    Eigen::Vector3d cv;
+    cv.noalias() = e.comJacobian() * e.v();
+    const Eigen::Vector2d vxy = cv.head<2>();
     const int edges = std::min(dm.polygon.edges(), kDamperRows);
     for (int i = 0; i < edges; ++i) {
       const double d = dm.polygon.distance(i, cxy);
@@ -638,7 +641,9 @@ void MultiRobotProblem::addTaskCost(TaskSlot& s) noexcept {
         const double f = e.mass() / mtot;
         T_.block(0, velocityOffset(i), 3, e.nv()) = f * e.comJacobian();
         c += f * e.com();
-        cdot.noalias() += f * (e.comJacobian() * e.v());
+        Eigen::Vector3d cv;
+        cv.noalias() = e.comJacobian() * e.v();
+        cdot += f * cv;
         bias += f * e.comBias();
       }
       s.error.head<3>() = c - t.target;

@@ -17,6 +17,10 @@ struct ProblemSettings {
   int max_joint_inequalities = 8;
   double contact_stiffness = 100.0;   ///< Baumgarte gains holding established contacts together
   double contact_damping = 20.0;
+  /// Look-ahead T of the joint position limits (eq. 23 written with T instead of Δt, T ≥ Δt):
+  /// q + q̇T + q̈T² stays within the limits, so a joint brakes before its limit instead of
+  /// reaching it at full speed and then needing an infinite deceleration.
+  double joint_limit_horizon = 0.05;
   double regularisation = 1e-6;       ///< weight of ‖q̈‖² + ‖λ‖², keeps the Hessian definite
   qp::QpSettings qp;
 };

@@ -228,6 +228,13 @@ Scene buildScene(const SceneSpec& spec, const ModelRegistry& models) {
     t.damping = ts.damping ? *ts.damping : -1.0;
     t.point = ts.point;
     for (std::size_t k = 0; k < ts.dims.size() && k < 6; ++k) t.dims[k] = ts.dims[k] ? 1 : 0;
+    if (t.type == problem::TaskType::FramePose && ts.dims.size() == 6) {
+      // The file lists (x, y, z, rx, ry, rz) like the target; the task's rows are (angular; linear).
+      for (std::size_t k = 0; k < 3; ++k) {
+        t.dims[k] = ts.dims[k + 3] ? 1 : 0;
+        t.dims[k + 3] = ts.dims[k] ? 1 : 0;
+      }
+    }
     const bool force = t.type == problem::TaskType::ContactForce || t.type == problem::TaskType::ForceMinimisation;
     if (force) {
       if (!ts.contact.empty()) {

@@ -1,0 +1,167 @@
+// The problem assembly on small cases with closed-form answers: cone generators, the support
+// polygon, a body in free fall, a body resting on the ground, two bodies stacked (action and
+// reaction through the bodies' own equations of motion), and input errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "problem/contact.hpp"
+#include "problem/multi_robot_problem.hpp"
+#include "problem/rigid_object.hpp"
+#include "problem/support_polygon.hpp"
+#include "scene_checks.hpp"
+
+using namespace mrqp::problem;
+using mrqp::qp::QpStatus;
+
+namespace {
+
+std::unique_ptr<Entity> cube(const char* name, double m, double z, const Eigen::Vector3d& com = Eigen::Vector3d::Zero()) {
+  auto e = std::make_unique<RigidObject>(name, m, com, Eigen::Matrix3d::Identity() * (m * 0.1 * 0.1 / 6.0));
+  e->q()(2) = z;
+  return e;
+}
+
+ContactDesc square(int entity, double half, double z) {
+  ContactDesc c;
+  c.entity = entity;
+  c.frame = 0;
+  c.npoints = 4;
+  c.points[0] = {-half, -half, z};
+  c.points[1] = {half, -half, z};
+  c.points[2] = {half, half, z};
+  c.points[3] = {-half, half, z};
+  c.friction = 0.5;
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("Cone generators lie on the Coulomb cone, evenly around the normal", "[problem]") {
+  for (const Eigen::Vector3d& n : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(Eigen::Vector3d(1, 2, -3).normalized()),
+                                   Eigen::Vector3d(1, 0, 0)}) {
+    for (double mu : {0.3, 1.0}) {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 6; ++k) {
+        const Eigen::Vector3d g = coneGenerator(n, mu, k, 6);
+        CHECK(g.norm() == Approx(1.0));
+        const double fn = g.dot(n), ft = (g - fn * n).norm();
+        CHECK(ft == Approx(mu * fn));
+        sum += g;
+      }
+      CHECK((sum.normalized() - n).norm() < 1e-12);  // symmetric around n
+    }
+  }
+}
+
+TEST_CASE("The support polygon is the convex hull with inward half-planes", "[problem]") {
+  SupportPolygon poly;
+  for (double x : {-1.0, 1.0}) {
+    for (double y : {-2.0, 2.0}) poly.add({x, y, 0.0});
+  }
+  poly.add({0.2, 0.3, 0.0});   // interior
+  poly.add({1.0, 0.0, 0.0});   // on an edge
+  poly.build();
+  REQUIRE(poly.edges() == 4);
+  CHECK(poly.margin({0.0, 0.0}) == Approx(1.0));
+  CHECK(poly.margin({0.5, 1.9}) == Approx(0.1));
+  CHECK(poly.margin({1.5, 0.0}) == Approx(-0.5));
+  SupportPolygon line;
+  line.add({0, 0, 0});
+  line.add({1, 0, 0});
+  line.add({2, 0, 0});
+  line.build();
+  CHECK(line.edges() == 0);
+}
+
+TEST_CASE("A free body falls with g", "[problem]") {
+  std::vector<std::unique_ptr<Entity>> es;
+  es.push_back(cube("a", 2.0, 1.0, {0.01, 0.02, -0.03}));
+  es[0]->v() << 0.3, -0.2, 0.1, 0.5, 0.0, -1.0;  // spinning while it falls
+  MultiRobotProblem p(std::move(es), ProblemSettings{});
+  p.update();
+  REQUIRE(p.solve() == QpStatus::Optimal);
+  const Entity& e = p.entity(0);
+  const Eigen::Vector3d a = e.comJacobian() * p.acceleration(0) + e.comBias();
+  CHECK((a - Eigen::Vector3d(0, 0, -9.81)).norm() < 1e-6);
+}
+
+TEST_CASE("A body resting on the ground is carried by a force m·g through its CoM", "[problem]") {
+  std::vector<std::unique_ptr<Entity>> es;
+  const Eigen::Vector3d com(0.02, -0.01, 0.0);
+  es.push_back(cube("a", 3.0, 0.05, com));
+  MultiRobotProblem p(std::move(es), ProblemSettings{});
+  const int c = p.addContact(square(0, 0.05, -0.05));
+  REQUIRE(c >= 0);
+  p.update();
+  REQUIRE(p.solve() == QpStatus::Optimal);
+  CHECK(p.acceleration(0).norm() < 1e-6);
+  const Vector6d w = p.contactWrench(c);
+  CHECK((w.tail<3>() - Eigen::Vector3d(0, 0, 3.0 * 9.81)).norm() < 1e-6);
+  // Moment about the contact centroid balances gravity acting at the CoM.
+  const Eigen::Vector3d r = p.entity(0).com() - p.contactPoint(c);
+  CHECK((w.head<3>() - r.cross(w.tail<3>())).norm() < 1e-6);
+  CHECK(p.lambda(c).minCoeff() >= 0.0);
+  CHECK(mrqp::testing::eomResidual(p) < 1e-9);
+}
+
+TEST_CASE("Two stacked bodies: the reaction is the action's opposite in both EoMs", "[problem]") {
+  std::vector<std::unique_ptr<Entity>> es;
+  es.push_back(cube("bottom", 3.0, 0.05));
+  es.push_back(cube("top", 1.5, 0.15));
+  MultiRobotProblem p(std::move(es), ProblemSettings{});
+  const int ground = p.addContact(square(0, 0.05, -0.05));
+  ContactDesc between = square(1, 0.04, -0.05);  // the top body's lower face on the bottom body
+  between.other_entity = 0;
+  between.other_frame = 0;
+  const int mid = p.addContact(between);
+  REQUIRE(ground >= 0);
+  REQUIRE(mid >= 0);
+  for (int k = 0; k < 100; ++k) {
+    p.update();
+    REQUIRE(p.solve() == QpStatus::Optimal);
+    CHECK(mrqp::testing::eomResidual(p) < 1e-9);
+    CHECK(mrqp::testing::coneViolation(p) < 1e-9);
+    p.integrate(0.001);
+  }
+  CHECK((p.contactForce(mid) - Eigen::Vector3d(0, 0, 1.5 * 9.81)).norm() < 1e-6);
+  CHECK((p.contactForce(ground) - Eigen::Vector3d(0, 0, 4.5 * 9.81)).norm() < 1e-6);
+  CHECK(std::abs(p.entity(1).q()(2) - 0.15) < 1e-6);  // no drift of the stack
+}
+
+TEST_CASE("Contacts and tasks are added, removed and refused with a reason", "[problem]") {
+  std::vector<std::unique_ptr<Entity>> es;
+  es.push_back(cube("a", 1.0, 0.05));
+  ProblemSettings s;
+  s.max_contacts = 1;
+  s.max_tasks = 1;
+  MultiRobotProblem p(std::move(es), s);
+  ContactDesc line = square(0, 0.05, -0.05);
+  line.npoints = 2;  // two points: a line, not a surface
+  CHECK(p.addContact(line) == -1);
+  CHECK(std::string(p.lastError()).find("3 points") != std::string::npos);
+  ContactDesc bad = square(0, 0.05, -0.05);
+  bad.frame = 7;
+  CHECK(p.addContact(bad) == -1);
+  const int c = p.addContact(square(0, 0.05, -0.05));
+  CHECK(c == 0);
+  CHECK(p.addContact(square(0, 0.05, -0.05)) == -1);  // capacity
+  CHECK(p.removeContact(c));
+  CHECK(p.addContact(square(0, 0.05, -0.05)) == 0);
+  TaskDesc t;
+  t.type = TaskType::FramePosition;
+  t.entity = 0;
+  t.frame = 3;
+  CHECK(p.addTask(t) == -1);
+  t.frame = 0;
+  t.weight = -1.0;
+  CHECK(p.addTask(t) == -1);
+  t.weight = 1.0;
+  const int id = p.addTask(t);
+  CHECK(id == 0);
+  CHECK(p.setTaskWeight(id, 5.0));
+  CHECK_FALSE(p.setTaskWeight(id, std::nan("")));
+  CHECK(p.addTask(t) == -1);
+}
