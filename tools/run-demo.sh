@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The main job. Today: generate allocation-free model code for every URDF in ../shared/models
-# (tests/data/models when that folder is absent), compile it, and print a summary table per model
-# (links, joints, nq, nv, mass, timing of the generated functions).
+# The main job: generate allocation-free model code for every URDF in ../shared/models
+# (tests/data/models when that folder is absent), compile it and print a summary table per model
+# (links, joints, nq, nv, mass, timing of the generated functions); then run the multi-robot QP
+# scenes of tools/scenes closed loop and plot them (build/demo/*.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -41,3 +42,12 @@ done
 echo "== summary (generated code compiled in, median timings)" >&2
 ./build/demo/tools/mrqp-model-summary --csv "$root/build/demo/model_summary.csv"
 echo "(CSV: build/demo/model_summary.csv; generated sources: build/demo/generated)" >&2
+
+echo "== multi-robot QP scenes, closed loop on their own models (tools/scenes)" >&2
+cmake --build build/demo -j"$jobs" --target mrqp-scene > build/demo-build.log 2>&1 \
+  || { tail -40 build/demo-build.log; exit 1; }
+for scene in jvrc1_box panda_door; do
+  ./build/demo/tools/scene_run/mrqp-scene --scene "tools/scenes/$scene.yaml" \
+    --csv "build/demo/$scene.csv" --plot "build/demo/$scene.png"
+done
+echo "(logs and plots: build/demo/jvrc1_box.{csv,png}, build/demo/panda_door.{csv,png})" >&2

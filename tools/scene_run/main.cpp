@@ -15,15 +15,41 @@ namespace {
 int usage(const char* msg) {
   if (msg) std::fprintf(stderr, "mrqp-scene: %s\n", msg);
   std::fprintf(stderr,
-               "usage: mrqp-scene --scene FILE.yaml [--csv OUT.csv] [--duration S] [--every N]\n"
-               "  Runs the scene for its settings.duration (or S) seconds and logs every N-th cycle.\n");
+               "usage: mrqp-scene --scene FILE.yaml [--csv OUT.csv [--plot OUT.png]] [--duration S]\n"
+               "                  [--every N]\n"
+               "  Runs the scene for its settings.duration (or S) seconds and logs every N-th cycle;\n"
+               "  --plot draws the task errors and contact forces against time (gnuplot).\n");
   return 2;
+}
+
+/// Task errors (log scale, top) and contact force norms (bottom) against time, with gnuplot.
+bool plot(const std::string& csv, const std::string& png, const std::string& title, int ntasks,
+          int ncontacts) {
+  FILE* gp = popen("gnuplot", "w");
+  if (!gp) return false;
+  std::fprintf(gp,
+               "set terminal pngcairo size 1000,700 font ',10' noenhanced\nset output '%s'\n"
+               "set datafile separator ','\nset key outside right\nset multiplot layout 2,1 title '%s'\n"
+               "set logscale y\nset ylabel 'task error'\nplot ",
+               png.c_str(), title.c_str());
+  for (int i = 0; i < ntasks; ++i) {
+    std::fprintf(gp, "%s'%s' every ::1 using 1:(column(%d) > 0 ? column(%d) : 1/0) with lines lw 2 title columnhead(%d)",
+                 i ? ", " : "", csv.c_str(), 5 + i, 5 + i, 5 + i);
+  }
+  std::fprintf(gp, "\nunset logscale y\nset ylabel 'contact force (N)'\nset xlabel 't (s)'\nplot ");
+  for (int i = 0; i < ncontacts; ++i) {
+    const int c = 5 + ntasks + 3 * i;
+    std::fprintf(gp, "%s'%s' every ::1 using 1:(sqrt(column(%d)**2 + column(%d)**2 + column(%d)**2)) with lines title columnhead(%d)",
+                 i ? ", " : "", csv.c_str(), c, c + 1, c + 2, c);
+  }
+  std::fprintf(gp, "\nunset multiplot\n");
+  return pclose(gp) == 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene_file, csv_file;
+  std::string scene_file, csv_file, png_file;
   double duration = -1.0;
   int every = 10;
   for (int i = 1; i < argc; ++i) {
@@ -37,6 +63,10 @@ int main(int argc, char** argv) {
       const char* v = next();
       if (!v) return usage("--csv needs a file");
       csv_file = v;
+    } else if (a == "--plot") {
+      const char* v = next();
+      if (!v) return usage("--plot needs a file");
+      png_file = v;
     } else if (a == "--duration") {
       const char* v = next();
       if (!v) return usage("--duration needs seconds");
@@ -52,6 +82,7 @@ int main(int argc, char** argv) {
     }
   }
   if (scene_file.empty()) return usage("--scene is required");
+  if (!png_file.empty() && csv_file.empty()) return usage("--plot needs --csv");
 
   mrqp::scene::ModelRegistry models;
   mrqp::scene::addBuiltinModels(models);
@@ -109,5 +140,15 @@ int main(int argc, char** argv) {
   std::printf("mrqp-scene: done; final task errors:\n");
   for (const auto& [name, id] : scene.tasks) std::printf("  %-16s %.3g\n", name.c_str(), p.taskError(id).norm());
   std::printf("  slowest cycle %.0f µs (wall clock, this machine)\n", worst_us);
+  if (!png_file.empty()) {
+    csv.close();
+    const int ntasks = static_cast<int>(scene.tasks.size());
+    const int ncontacts = static_cast<int>(scene.contacts.size());
+    if (!plot(csv_file, png_file, scene_file, ntasks, ncontacts)) {
+      std::fprintf(stderr, "mrqp-scene: gnuplot failed: no plot written (the CSV is complete)\n");
+      return 1;
+    }
+    std::printf("mrqp-scene: plot written to %s\n", png_file.c_str());
+  }
   return 0;
 }
