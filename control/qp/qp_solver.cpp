@@ -91,6 +91,8 @@ QpSolver::QpSolver(int max_variables, int max_equalities, int max_inequalities,
   Hs_.setZero(N, N);
   rownorm_.setZero(max_mi_);
   row_kind_.assign(static_cast<std::size_t>(max_mi_), kFree);
+  h_lo_.assign(static_cast<std::size_t>(N), 0);
+  h_hi_.assign(static_cast<std::size_t>(N), -1);
   row_active_.assign(static_cast<std::size_t>(max_mi_), 0);
   bound_kind_.assign(static_cast<std::size_t>(N), kFree);
   bound_active_.assign(static_cast<std::size_t>(N), 0);
@@ -250,6 +252,15 @@ QpStatus QpSolver::validate(const QpProblem& p) noexcept {
 QpStatus QpSolver::classify() noexcept {
   const auto H = p_->H();
   Hs_.topLeftCorner(n_, n_) = 0.5 * (H + H.transpose());
+  h_envelope_ = 0;
+  for (int j = 0; j < n_; ++j) {
+    int lo = 0, hi = n_ - 1;
+    while (lo < n_ && Hs_(lo, j) == 0.0) ++lo;
+    while (hi >= lo && Hs_(hi, j) == 0.0) --hi;
+    h_lo_[static_cast<std::size_t>(j)] = lo;
+    h_hi_[static_cast<std::size_t>(j)] = hi;
+    h_envelope_ += hi >= lo ? hi - lo + 1 : 0;
+  }
   const auto C = p_->C();
   auto rn = rownorm_.head(mi_);
   rn.setZero();
@@ -482,8 +493,24 @@ QpStatus QpSolver::factorReducedHessian() noexcept {
   if (rank_ == 0) {
     Hz_.topLeftCorner(n, n).triangularView<Eigen::Lower>() = Hs_.topLeftCorner(n, n);
   } else {
-    for (int j = 0; j < nz; ++j)
-      W_.col(j).head(n).noalias() = Hs_.topLeftCorner(n, n) * J_.col(j).head(n);
+    if (2 * h_envelope_ < static_cast<long>(n) * n) {
+      // W = Hs J column of Hs by column: only the envelope of each column is touched.
+      auto W = W_.topLeftCorner(n, nz);
+      W.setZero();
+      for (int j = 0; j < n; ++j) {
+        const int lo = h_lo_[static_cast<std::size_t>(j)];
+        const int len = h_hi_[static_cast<std::size_t>(j)] - lo + 1;
+        if (len <= 0) continue;
+        if (len == 1) {
+          W.row(lo) += Hs_(lo, j) * J_.row(j).head(nz);
+        } else {
+          W.middleRows(lo, len).noalias() += Hs_.col(j).segment(lo, len) * J_.row(j).head(nz);
+        }
+      }
+    } else {
+      for (int j = 0; j < nz; ++j)
+        W_.col(j).head(n).noalias() = Hs_.topLeftCorner(n, n) * J_.col(j).head(n);
+    }
     for (int j = 0; j < nz; ++j)
       Hz_.col(j).segment(j, nz - j).noalias() =
           J_.block(0, j, n, nz - j).transpose() * W_.col(j).head(n);

@@ -176,6 +176,11 @@ class QpSolver {
   Eigen::MatrixXd Hs_;  // symmetric part of H
   Eigen::VectorXd rownorm_;
   std::vector<std::int8_t> row_kind_, bound_kind_;    // kFree / kInequality / kEquality
+  // Envelope of Hs: rows h_lo_[j] … h_hi_[j] hold column j's non-zeros (h_hi_ < h_lo_: empty).
+  // A Hessian made of a diagonal and a few dense blocks (the usual task Hessian) then costs
+  // O(Σ envelope · nz) instead of O(n² nz) in the reduced Hessian.
+  std::vector<std::int32_t> h_lo_, h_hi_;
+  long h_envelope_ = 0;
   std::vector<std::int8_t> row_active_, bound_active_;  // 0, +1 lower, -1 upper
 
   // equalities: Householder QR of Aeᵀ (n × meq), vectors below the diagonal, dependent columns last
