@@ -165,3 +165,21 @@ TEST_CASE("Contacts and tasks are added, removed and refused with a reason", "[p
   CHECK_FALSE(p.setTaskWeight(id, std::nan("")));
   CHECK(p.addTask(t) == -1);
 }
+
+TEST_CASE("A group CoM task measures the mass-weighted CoM of its entities", "[problem]") {
+  std::vector<std::unique_ptr<Entity>> es;
+  es.push_back(cube("a", 1.0, 0.0));
+  es.push_back(cube("b", 3.0, 0.0));
+  es[1]->q()(0) = 2.0;
+  MultiRobotProblem p(std::move(es), ProblemSettings{});
+  TaskDesc t;
+  t.type = TaskType::Com;
+  t.entity_mask = 0b11;
+  t.target = {1.0, 0.0, 0.0};
+  const int id = p.addTask(t);
+  REQUIRE(id >= 0);
+  p.update();
+  CHECK((p.taskError(id).head<3>() - Eigen::Vector3d(0.5, 0.0, 0.0)).norm() < 1e-12);  // (0·1 + 2·3)/4 − 1
+  t.entity_mask = 0b100;  // no such entity
+  CHECK(p.addTask(t) == -1);
+}
