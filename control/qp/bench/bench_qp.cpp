@@ -1,13 +1,20 @@
 // bench_qp: timings of the QP solver (docs/qp.md, "Benchmark").
 //
-//   bench_qp [--data DIR] [--mm] [--random] [--reps N] [--steps N] [--seed S] [--gradient-scale G]
+//   bench_qp [--data DIR] [--mm] [--random] [--dump FILE|DIR]... [--reps N] [--steps N] [--seed S]
+//            [--gradient-scale G]
 //
 // --mm      the Maros–Meszaros subset of DIR/maros-meszaros (INDEX.tsv order): status, objective
 //           error against the reference, iterations and solve times (each problem cold, N reps)
 // --random  random dense QPs 60 var / 36 eq / 40 ineq + bounds and 150 / 100 / 150 + bounds:
 //           a sequence of `steps` slightly perturbed QPs (a control loop), solved cold and warm;
 //           G (default 10) scales g: the larger, the more constraints are active at the optimum
-// Without --mm / --random both run. Times are per solve() call, single thread: wall clock
+// --dump    QP dump files (docs/qp.md, "The QP text format"), e.g. the controller-scene QPs of
+//           DIR/scenes (tests/data/qp/scenes): a directory stands for every *.qp file in it. Each
+//           QP is solved N times cold and N times warm, alternately with one solver, so that both
+//           see the same machine: a warm solve starts from the optimal active set of the cold
+//           solve just before it (the best case of a control loop whose active set does not change
+//           between cycles; the setup — QR of the equalities, reduced Hessian — is redone each time)
+// Without --mm / --random / --dump, --mm and --random run. Times are per solve() call, single thread: wall clock
 // (median, p90, p99, max) and, because a shared machine inflates wall time, the median of the
 // thread's CPU time as well. The 1-minute load average is printed for context.
 #include <algorithm>
@@ -16,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -170,6 +178,69 @@ void runRandom(const char* label, const mrqp::qp::RandomQpSpec& spec, int steps,
   }
 }
 
+/// The files named on the command line, a directory expanded to its *.qp files in name order.
+bool expandDumps(const std::vector<std::string>& args, std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  for (const auto& a : args) {
+    std::error_code ec;
+    if (fs::is_directory(a, ec)) {
+      std::vector<std::string> in_dir;
+      for (const auto& e : fs::directory_iterator(a, ec))
+        if (e.is_regular_file() && e.path().extension() == ".qp") in_dir.push_back(e.path().string());
+      if (ec || in_dir.empty()) {
+        std::fprintf(stderr, "bench_qp: no .qp file in %s\n", a.c_str());
+        return false;
+      }
+      std::sort(in_dir.begin(), in_dir.end());
+      files.insert(files.end(), in_dir.begin(), in_dir.end());
+    } else {
+      files.push_back(a);
+    }
+  }
+  return true;
+}
+
+int runDumps(const std::vector<std::string>& files, int reps) {
+  std::printf("## QP dumps, each solved %d times cold and %d times warm (from its own optimal active set), "
+              "alternately\n\n",
+              reps, reps);
+  std::printf("| QP | n | eq | ineq | status | cold steps | cold median µs | cold max µs | cold CPU median µs | "
+              "warm steps | warm median µs | warm max µs | warm CPU median µs | active | primal res. | dual res. |\n");
+  std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  int failures = 0;
+  for (const auto& file : files) {
+    QpText qp;
+    std::string error;
+    if (!mrqp::qp::readQpFile(file, qp, error)) {
+      std::fprintf(stderr, "bench_qp: %s: %s\n", file.c_str(), error.c_str());
+      return 1;
+    }
+    QpProblem problem(qp.n, qp.me, qp.mi);
+    mrqp::qp::toProblem(qp, problem);
+    QpSolver solver(problem);
+    Timing tc, tw;
+    mrqp::qp::QpInfo ci, wi;
+    for (int k = 0; k < reps; ++k) {
+      solver.settings().warm_start = false;
+      solveTimed(solver, problem, tc);
+      ci = solver.info();
+      solver.settings().warm_start = true;  // from the active set the cold solve just found
+      solveTimed(solver, problem, tw);
+      wi = solver.info();
+    }
+    const bool ok = ci.status == QpStatus::Optimal && wi.status == QpStatus::Optimal;
+    failures += !ok;
+    const Stats c = stats(tc.wall), cc = stats(tc.cpu), w = stats(tw.wall), wc = stats(tw.cpu);
+    std::printf("| %s | %d | %d | %d | %s%s%s | %d | %.0f | %.0f | %.0f | %d | %.0f | %.0f | %.0f | %d | %.1e | %.1e |\n",
+                qp.name.c_str(), qp.n, qp.me, qp.mi, mrqp::qp::toString(ci.status), ok ? "" : " / ",
+                ok ? "" : mrqp::qp::toString(wi.status), ci.iterations, c.median, c.max, cc.median, wi.iterations,
+                w.median, w.max, wc.median, ci.active_inequalities + ci.active_bounds, ci.primal_residual,
+                ci.dual_residual);
+  }
+  std::printf("\nnot optimal: %d of %zu\n\n", failures, files.size());
+  return failures ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -178,6 +249,7 @@ int main(int argc, char** argv) {
   int reps = 20, steps = 1000;
   unsigned seed = 1;
   double gscale = 10.0;
+  std::vector<std::string> dump_args;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> const char* {
@@ -190,18 +262,22 @@ int main(int argc, char** argv) {
     if (a == "--data") dir = value();
     else if (a == "--mm") mm = true;
     else if (a == "--random") random = true;
+    else if (a == "--dump") dump_args.push_back(value());
     else if (a == "--reps") reps = std::max(1, std::atoi(value()));
     else if (a == "--steps") steps = std::max(1, std::atoi(value()));
     else if (a == "--seed") seed = static_cast<unsigned>(std::atoi(value()));
     else if (a == "--gradient-scale") gscale = std::atof(value());
     else {
-      std::fprintf(stderr, "usage: bench_qp [--data DIR] [--mm] [--random] [--reps N] [--steps N] [--seed S] "
-                           "[--gradient-scale G]\n");
+      std::fprintf(stderr, "usage: bench_qp [--data DIR] [--mm] [--random] [--dump FILE|DIR]... [--reps N] "
+                           "[--steps N] [--seed S] [--gradient-scale G]\n");
       return 2;
     }
   }
-  if (!mm && !random) mm = random = true;
+  std::vector<std::string> dumps;
+  if (!expandDumps(dump_args, dumps)) return 1;
+  if (!mm && !random && dumps.empty()) mm = random = true;
   std::printf("# bench_qp (load average %s)\n\n", loadAverage().c_str());
+  if (!dumps.empty() && runDumps(dumps, reps) != 0) return 1;
   if (mm && runMarosMeszaros(dir + "/maros-meszaros", reps) != 0) return 1;
   if (random) {
     std::printf("## Random dense QPs: %d perturbed QPs in sequence (seed %u, gradient scale %g)\n\n", steps,
