@@ -199,23 +199,29 @@ QpStatus QpSolver::solve(const QpProblem& problem) noexcept {
   if (st != QpStatus::Optimal) return finish(st);
   st = classify();
   if (st != QpStatus::Optimal) return finish(st);
-  st = factorEqualities();
-  if (st != QpStatus::Optimal) return finish(st);
-  st = factorReducedHessian();
-  if (st != QpStatus::Optimal) return finish(st);
+  range_space_ = factorHessianProfile();
+  for (;;) {
+    st = factorEqualities();
+    if (st != QpStatus::Optimal) return finish(st);
+    st = range_space_ ? finishRangeSpace() : factorReducedHessian();
+    if (st != QpStatus::Optimal) return finish(st);
 
-  const bool warm = settings_.warm_start && warm_n_ >= 0;
-  if (warm) {
-    J0_.topLeftCorner(n_, nz_) = J_.topLeftCorner(n_, nz_);
-    info_.warm_started = true;
-    st = runAttempt(true);
-    if (st == QpStatus::Optimal) return finish(st);
-    // defined recovery: forget the warm start and solve again from scratch
-    info_.cold_restarted = true;
-    J_.topLeftCorner(n_, nz_) = J0_.topLeftCorner(n_, nz_);
+    const bool warm = settings_.warm_start && warm_n_ >= 0;
+    if (warm) {
+      J0_.topLeftCorner(n_, nz_) = J_.topLeftCorner(n_, nz_);
+      info_.warm_started = true;
+      st = runAttempt(true);
+      if (st == QpStatus::Optimal) return finish(st);
+      // defined recovery: forget the warm start and solve again from scratch
+      info_.cold_restarted = true;
+      J_.topLeftCorner(n_, nz_) = J0_.topLeftCorner(n_, nz_);
+    }
+    st = runAttempt(false);
+    // The range-space factors may be less accurate on a badly conditioned H: a failure there is
+    // retried once on the null-space path before it is reported.
+    if (st != QpStatus::NumericalFailure || !range_space_) return finish(st);
+    range_space_ = false;
   }
-  st = runAttempt(false);
-  return finish(st);
 }
 
 QpStatus QpSolver::validate(const QpProblem& p) noexcept {
@@ -374,6 +380,7 @@ QpStatus QpSolver::factorEqualities() noexcept {
         be_(k) = p_->xl()(i);
         break;
     }
+    if (range_space_) solveL(col);
     perm_[static_cast<std::size_t>(k)] = k;
     colnorm0_(k) = col.norm();
   }
@@ -430,6 +437,7 @@ QpStatus QpSolver::factorEqualities() noexcept {
       xp.segment(k + 1, n - k - 1) -= s * v;
     }
   }
+  if (range_space_) solveLt(xp);  // from y = Lᵀx back to x
   // every equality row, dependent ones included, must hold at x_p
   const double xnorm = xp.size() > 0 ? xp.lpNorm<Eigen::Infinity>() : 0.0;
   for (int k = 0; k < m; ++k) {
@@ -553,6 +561,73 @@ QpStatus QpSolver::factorReducedHessian() noexcept {
     }
   }
   jnorm_ = J_.topLeftCorner(n, nz).norm();
+  return QpStatus::Optimal;
+}
+
+// Profile (envelope) Cholesky Hs = L Lᵀ, stored as U = Lᵀ in Lz_ (column i of U = row i of L,
+// rows h_lo_[i] … i). Fill-in stays inside the profile. Taken only when the profile is at most a
+// quarter of the full matrix and every pivot is safely positive; false leaves the null-space
+// path to handle H (including a semi-definite one).
+bool QpSolver::factorHessianProfile() noexcept {
+  const int n = n_;
+  if (n == 0 || 4 * h_envelope_ > static_cast<long>(n) * n) return false;
+  long profile = 0;
+  double scale = 0.0;
+  for (int i = 0; i < n; ++i) {
+    profile += i - std::min(h_lo_[static_cast<std::size_t>(i)], i) + 1;
+    scale = std::max(scale, Hs_(i, i));
+  }
+  if (4 * profile > static_cast<long>(n) * n || !(scale > 0.0)) return false;
+  const double threshold = settings_.definiteness_tolerance * scale;
+  for (int i = 0; i < n; ++i) {
+    const int fi = std::min(h_lo_[static_cast<std::size_t>(i)], i);
+    for (int j = fi; j < i; ++j) {
+      const int k0 = std::max(fi, std::min(h_lo_[static_cast<std::size_t>(j)], j));
+      double sum = Hs_(i, j);
+      if (j > k0) sum -= Lz_.col(i).segment(k0, j - k0).dot(Lz_.col(j).segment(k0, j - k0));
+      Lz_(j, i) = sum / Lz_(j, j);
+    }
+    double d = Hs_(i, i);
+    if (i > fi) d -= Lz_.col(i).segment(fi, i - fi).squaredNorm();
+    if (!(d > threshold)) return false;
+    Lz_(i, i) = std::sqrt(d);
+  }
+  return true;
+}
+
+void QpSolver::solveL(Eigen::Ref<Eigen::VectorXd> v) const noexcept {
+  for (int i = 0; i < n_; ++i) {
+    const int fi = std::min(h_lo_[static_cast<std::size_t>(i)], i);
+    double s = v(i);
+    if (i > fi) s -= Lz_.col(i).segment(fi, i - fi).dot(v.segment(fi, i - fi));
+    v(i) = s / Lz_(i, i);
+  }
+}
+
+void QpSolver::solveLt(Eigen::Ref<Eigen::VectorXd> v) const noexcept {
+  for (int i = n_ - 1; i >= 0; --i) {
+    const int fi = std::min(h_lo_[static_cast<std::size_t>(i)], i);
+    v(i) /= Lz_(i, i);
+    if (i > fi) v.segment(fi, i - fi) -= v(i) * Lz_.col(i).segment(fi, i - fi);
+  }
+}
+
+// J = L⁻ᵀ Z with Z = Q(:, r:n) from factorEqualities (the identity without equalities):
+// JᵀHJ = ZᵀL⁻¹ L Lᵀ L⁻ᵀ Z = I and Ae J = Rᵀ Q₁ᵀ Z = 0, as the null-space path's J.
+QpStatus QpSolver::finishRangeSpace() noexcept {
+  const int n = n_, nz = nz_;
+  auto J = J_.topLeftCorner(n, nz);
+  if (rank_ == 0) J.setIdentity();
+  for (int i = n - 1; i >= 0; --i) {
+    const int fi = std::min(h_lo_[static_cast<std::size_t>(i)], i);
+    J.row(i) /= Lz_(i, i);
+    if (i > fi) J.middleRows(fi, i - fi).noalias() -= Lz_.col(i).segment(fi, i - fi) * J.row(i);
+  }
+  regularized_ = false;
+  rho_ = 0.0;
+  info_.regularized = false;
+  info_.rho = 0.0;
+  jnorm_ = J.norm();
   return QpStatus::Optimal;
 }
 
@@ -717,6 +792,7 @@ void QpSolver::projectOnEqualities() noexcept {
     dx(k) -= s;
     dx.segment(k + 1, n - k - 1) -= s * v;
   }
+  if (range_space_) solveLt(dx);
   x_.head(n) += dx;
 }
 
@@ -998,6 +1074,7 @@ QpStatus QpSolver::checkKkt() noexcept {
     w.setZero();
   w += hx + p_->g() + mu;
   w = -w;
+  if (range_space_) solveL(w);  // Aeᵀ = L Q R
   const int r = rank_;
   for (int k = 0; k < r; ++k) {
     auto v = QRe_.col(k).segment(k + 1, n - k - 1);

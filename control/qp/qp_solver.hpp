@@ -130,6 +130,14 @@ class QpSolver {
   template <class MB>
   void applyBlockReflector(int nb, bool transpose, MB&& M) noexcept;
   QpStatus factorReducedHessian() noexcept;
+  // Range-space path, taken when Hs is positive definite with a small profile (a task Hessian:
+  // a diagonal plus a few dense blocks): Hs = L Lᵀ by a profile Cholesky (Lᵀ kept in Lz_), the
+  // equality normals are factorised as L⁻¹Aeᵀ = QR, and J = L⁻ᵀ Q(:, r:n) directly, with no
+  // reduced Hessian to form and factorise (docs/qp.md).
+  bool factorHessianProfile() noexcept;
+  void solveL(Eigen::Ref<Eigen::VectorXd> v) const noexcept;   // v ← L⁻¹ v
+  void solveLt(Eigen::Ref<Eigen::VectorXd> v) const noexcept;  // v ← L⁻ᵀ v
+  QpStatus finishRangeSpace() noexcept;
   bool choleskyInPlace(int m, double rho, double threshold) noexcept;
   QpStatus runAttempt(bool warm) noexcept;
   QpStatus iterate() noexcept;
@@ -181,6 +189,7 @@ class QpSolver {
   // O(Σ envelope · nz) instead of O(n² nz) in the reduced Hessian.
   std::vector<std::int32_t> h_lo_, h_hi_;
   long h_envelope_ = 0;
+  bool range_space_ = false;
   std::vector<std::int8_t> row_active_, bound_active_;  // 0, +1 lower, -1 upper
 
   // equalities: Householder QR of Aeᵀ (n × meq), vectors below the diagonal, dependent columns last
