@@ -44,19 +44,9 @@ const char* arm_phase_str(ArmPhase phase) noexcept
   return "unknown";
 }
 
-int ArmDriver::slot_of(const BusRouter& router) const noexcept
-{
-  for (std::size_t i = 0; i < buses_.size(); ++i) {
-    if (buses_[i].router == &router) {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
 bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept
 {
-  const SendResult r = buses_[slot].router->bus().send(f);
+  const SendResult r = routers_.router(slot).bus().send(f);
   if (r == SendResult::Ok) {
     return true;
   }
@@ -211,10 +201,7 @@ SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept
 
 const FaultReport& ArmDriver::update(TimeNs now) noexcept
 {
-  ++report_.cycle;
-  for (std::size_t s = 0; s < buses_.size(); ++s) {
-    bus_faults_[s] = buses_[s].health.update(*buses_[s].router);
-  }
+  routers_.start_cycle();
 
   // Boot progression.
   if (phase_ == ArmPhase::Resetting) {
@@ -312,10 +299,9 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
       }
     }
     d.faults.flags = flags;
-    device_faults_[i] = d.faults;
+    routers_.device(i) = d.faults;
   }
-  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
-  return report_;
+  return routers_.publish();
 }
 
 std::size_t ArmDriver::transmit(TimeNs now) noexcept
@@ -549,7 +535,7 @@ void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept
 
 Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
 {
-  const int slot = slot_of(from);
+  const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;

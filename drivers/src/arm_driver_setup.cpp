@@ -143,9 +143,8 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
   std::unique_ptr<ArmDriver> p(new ArmDriver());
   p->config_ = config;
   p->buses_.resize(buses.size());
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    p->buses_[s].router = buses[s];
-    p->buses_[s].node_to_drive.fill(-1);
+  for (BusSlot& b : p->buses_) {
+    b.node_to_drive.fill(-1);
   }
   p->drives_.resize(config.drives.size());
   for (std::size_t i = 0; i < config.drives.size(); ++i) {
@@ -156,41 +155,10 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
     mrqp_fw_sdo_client_reset(&d.sdo);
     p->build_writes(d);
   }
-  p->device_faults_.resize(p->drives_.size());
-  p->bus_faults_.resize(p->buses_.size());
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    bool duplicate = false;
-    for (std::size_t k = 0; k < s; ++k) {
-      duplicate = duplicate || buses[k] == buses[s];
-    }
-    if (duplicate) {
-      for (std::size_t k = 0; k < s; ++k) {
-        buses[k]->remove_handler(*p);
-      }
-      return fail("bus " + std::to_string(s) + " given twice");
-    }
-    if (!buses[s]->add_handler(*p)) {
-      for (std::size_t k = 0; k < s; ++k) {
-        buses[k]->remove_handler(*p);
-      }
-      return fail("bus " + std::to_string(s) + ": the router's handler table is full");
-    }
-    p->buses_[s].health.reset(*buses[s]);
+  if (const std::string why = p->routers_.attach(buses, *p, p->drives_.size()); !why.empty()) {
+    return fail(why);
   }
-  p->report_.devices = p->device_faults_.data();
-  p->report_.device_count = p->device_faults_.size();
-  p->report_.buses = p->bus_faults_.data();
-  p->report_.bus_count = p->bus_faults_.size();
   return p;
-}
-
-ArmDriver::~ArmDriver()
-{
-  for (BusSlot& b : buses_) {
-    if (b.router != nullptr) {
-      b.router->remove_handler(*this);
-    }
-  }
 }
 
 void ArmDriver::declare_traffic(std::size_t bus, BusBudget& budget) const

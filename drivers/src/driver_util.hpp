@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "mrqp/drivers/bus.hpp"
-#include "mrqp/drivers/faults.hpp"
 #include "mrqp/firmware_if/saturate.h"
 
 namespace mrqp::drivers::detail {
@@ -37,24 +36,6 @@ inline double clamp(double x, double lo, double hi, bool* limited) noexcept
     return hi;
   }
   return x;
-}
-
-/// Fills a FaultReport from the driver's arrays.
-inline void publish(FaultReport& r, const DeviceFaults* devices, std::size_t n_devices, const BusFaults* buses,
-                    std::size_t n_buses) noexcept
-{
-  r.devices = devices;
-  r.device_count = n_devices;
-  r.buses = buses;
-  r.bus_count = n_buses;
-  std::uint32_t flags = 0;
-  for (std::size_t i = 0; i < n_devices; ++i) {
-    flags |= devices[i].flags;
-  }
-  for (std::size_t i = 0; i < n_buses; ++i) {
-    flags |= buses[i].flags;
-  }
-  r.flags = flags;
 }
 
 }  // namespace mrqp::drivers::detail

@@ -5,16 +5,6 @@
 
 namespace mrqp::drivers {
 
-int FdHandDriver::slot_of(const BusRouter& router) const noexcept
-{
-  for (std::size_t i = 0; i < buses_.size(); ++i) {
-    if (buses_[i].router == &router) {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
 void FdHandDriver::request_enable(TimeNs now) noexcept
 {
   for (Board& b : boards_) {
@@ -78,10 +68,7 @@ SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, flo
 
 const FaultReport& FdHandDriver::update(TimeNs now) noexcept
 {
-  ++report_.cycle;
-  for (std::size_t s = 0; s < buses_.size(); ++s) {
-    bus_faults_[s] = buses_[s].health.update(*buses_[s].router);
-  }
+  routers_.start_cycle();
   for (std::size_t i = 0; i < boards_.size(); ++i) {
     Board& b = boards_[i];
     std::uint32_t flags = b.events;
@@ -133,10 +120,9 @@ const FaultReport& FdHandDriver::update(TimeNs now) noexcept
       }
     }
     b.faults.flags = flags;
-    device_faults_[i] = b.faults;
+    routers_.device(i) = b.faults;
   }
-  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
-  return report_;
+  return routers_.publish();
 }
 
 std::size_t FdHandDriver::transmit(TimeNs) noexcept
@@ -173,7 +159,7 @@ std::size_t FdHandDriver::transmit(TimeNs) noexcept
         ++b.faults.limited_setpoints;
         b.events |= fault::kSetpointLimited;
       }
-      const SendResult r = buses_[b.cfg.bus].router->bus().send(f);
+      const SendResult r = routers_.router(b.cfg.bus).bus().send(f);
       if (r == SendResult::Ok) {
         ++count;
         any = true;
@@ -189,7 +175,7 @@ std::size_t FdHandDriver::transmit(TimeNs) noexcept
 
 Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
 {
-  const int slot = slot_of(from);
+  const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u || f.id < MRQP_FW_HAND_FD_FB_ID_BASE ||
       f.id > MRQP_FW_HAND_FD_FB_ID_BASE + MRQP_FW_HAND_BOARD_MAX) {

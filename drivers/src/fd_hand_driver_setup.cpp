@@ -54,9 +54,8 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
   std::unique_ptr<FdHandDriver> p(new FdHandDriver());
   p->config_ = config;
   p->buses_.resize(buses.size());
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    p->buses_[s].router = buses[s];
-    p->buses_[s].board_to_index.fill(-1);
+  for (BusSlot& s : p->buses_) {
+    s.board_to_index.fill(-1);
   }
   p->boards_.resize(config.boards.size());
   for (std::size_t i = 0; i < config.boards.size(); ++i) {
@@ -65,28 +64,10 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
     b.chunks = mrqp_fw_hand_frames_needed(b.cfg.joints);
     p->buses_[b.cfg.bus].board_to_index[b.cfg.board] = static_cast<std::int16_t>(i);
   }
-  p->device_faults_.resize(p->boards_.size());
-  p->bus_faults_.resize(p->buses_.size());
-  if (const std::string why = detail::attach_to_routers(buses, *p); !why.empty()) {
+  if (const std::string why = p->routers_.attach(buses, *p, p->boards_.size()); !why.empty()) {
     return fail(why);
   }
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    p->buses_[s].health.reset(*buses[s]);
-  }
-  p->report_.devices = p->device_faults_.data();
-  p->report_.device_count = p->device_faults_.size();
-  p->report_.buses = p->bus_faults_.data();
-  p->report_.bus_count = p->bus_faults_.size();
   return p;
-}
-
-FdHandDriver::~FdHandDriver()
-{
-  for (BusSlot& b : buses_) {
-    if (b.router != nullptr) {
-      b.router->remove_handler(*this);
-    }
-  }
 }
 
 void FdHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const

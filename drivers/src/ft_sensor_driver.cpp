@@ -7,16 +7,6 @@
 
 namespace mrqp::drivers {
 
-int FtSensorDriver::slot_of(const BusRouter& router) const noexcept
-{
-  for (std::size_t i = 0; i < buses_.size(); ++i) {
-    if (buses_[i].router == &router) {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
 void FtSensorDriver::start(TimeNs) noexcept
 {
   started_ = true;
@@ -111,7 +101,7 @@ Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexc
 
 Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
 {
-  const int slot = slot_of(from);
+  const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;
@@ -142,10 +132,7 @@ Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs 
 
 const FaultReport& FtSensorDriver::update(TimeNs now) noexcept
 {
-  ++report_.cycle;
-  for (std::size_t b = 0; b < buses_.size(); ++b) {
-    bus_faults_[b] = buses_[b].health.update(*buses_[b].router);
-  }
+  routers_.start_cycle();
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
     std::uint32_t flags = s.events;
@@ -185,10 +172,9 @@ const FaultReport& FtSensorDriver::update(TimeNs now) noexcept
       flags |= fault::kTimeout;
     }
     s.faults.flags = flags;
-    device_faults_[i] = s.faults;
+    routers_.device(i) = s.faults;
   }
-  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
-  return report_;
+  return routers_.publish();
 }
 
 std::size_t FtSensorDriver::transmit(TimeNs) noexcept
@@ -200,7 +186,7 @@ std::size_t FtSensorDriver::transmit(TimeNs) noexcept
     }
     mrqp_fw_frame f;
     (void)mrqp_fw_ft_pack_tare(s.cfg.node, s.tare_value ? MRQP_FW_FT_CMD_TARE : MRQP_FW_FT_CMD_CLEAR_TARE, &f);
-    const SendResult r = buses_[s.cfg.bus].router->bus().send(f);
+    const SendResult r = routers_.router(s.cfg.bus).bus().send(f);
     if (r == SendResult::Ok) {
       s.tare_send = false;
       ++count;
@@ -210,13 +196,13 @@ std::size_t FtSensorDriver::transmit(TimeNs) noexcept
     }
   }
   if (config_.produce_sync && started_) {
-    for (BusSlot& b : buses_) {
-      if (!b.has_sensors) {
+    for (std::size_t b = 0; b < buses_.size(); ++b) {
+      if (!buses_[b].has_sensors) {
         continue;
       }
       mrqp_fw_frame f;
       (void)mrqp_fw_sync_pack(0u, &f);
-      if (b.router->bus().send(f) == SendResult::Ok) {
+      if (routers_.router(b).bus().send(f) == SendResult::Ok) {
         ++count;
       }
     }

@@ -51,9 +51,8 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
   std::unique_ptr<FtSensorDriver> p(new FtSensorDriver());
   p->config_ = config;
   p->buses_.resize(buses.size());
-  for (std::size_t b = 0; b < buses.size(); ++b) {
-    p->buses_[b].router = buses[b];
-    p->buses_[b].node_to_sensor.fill(-1);
+  for (BusSlot& b : p->buses_) {
+    b.node_to_sensor.fill(-1);
   }
   p->sensors_.resize(config.sensors.size());
   for (std::size_t i = 0; i < config.sensors.size(); ++i) {
@@ -61,28 +60,10 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
     p->buses_[config.sensors[i].bus].node_to_sensor[config.sensors[i].node] = static_cast<std::int16_t>(i);
     p->buses_[config.sensors[i].bus].has_sensors = true;
   }
-  p->device_faults_.resize(p->sensors_.size());
-  p->bus_faults_.resize(p->buses_.size());
-  if (const std::string why = detail::attach_to_routers(buses, *p); !why.empty()) {
+  if (const std::string why = p->routers_.attach(buses, *p, p->sensors_.size()); !why.empty()) {
     return fail(why);
   }
-  for (std::size_t b = 0; b < buses.size(); ++b) {
-    p->buses_[b].health.reset(*buses[b]);
-  }
-  p->report_.devices = p->device_faults_.data();
-  p->report_.device_count = p->device_faults_.size();
-  p->report_.buses = p->bus_faults_.data();
-  p->report_.bus_count = p->bus_faults_.size();
   return p;
-}
-
-FtSensorDriver::~FtSensorDriver()
-{
-  for (BusSlot& b : buses_) {
-    if (b.router != nullptr) {
-      b.router->remove_handler(*this);
-    }
-  }
 }
 
 void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const

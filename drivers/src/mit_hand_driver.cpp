@@ -5,16 +5,6 @@
 
 namespace mrqp::drivers {
 
-int MitHandDriver::slot_of(const BusRouter& router) const noexcept
-{
-  for (std::size_t i = 0; i < buses_.size(); ++i) {
-    if (buses_[i].router == &router) {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
 void MitHandDriver::request_enable(TimeNs now) noexcept
 {
   for (Motor& m : motors_) {
@@ -92,10 +82,7 @@ SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& 
 
 const FaultReport& MitHandDriver::update(TimeNs now) noexcept
 {
-  ++report_.cycle;
-  for (std::size_t s = 0; s < buses_.size(); ++s) {
-    bus_faults_[s] = buses_[s].health.update(*buses_[s].router);
-  }
+  routers_.start_cycle();
   for (std::size_t i = 0; i < motors_.size(); ++i) {
     Motor& m = motors_[i];
     std::uint32_t flags = m.events;
@@ -123,10 +110,9 @@ const FaultReport& MitHandDriver::update(TimeNs now) noexcept
       flags |= fault::kTimeout;
     }
     m.faults.flags = flags;
-    device_faults_[i] = m.faults;
+    routers_.device(i) = m.faults;
   }
-  detail::publish(report_, device_faults_.data(), device_faults_.size(), bus_faults_.data(), bus_faults_.size());
-  return report_;
+  return routers_.publish();
 }
 
 std::size_t MitHandDriver::transmit(TimeNs) noexcept
@@ -170,7 +156,7 @@ std::size_t MitHandDriver::transmit(TimeNs) noexcept
       ++m.faults.limited_setpoints;
       m.events |= fault::kSetpointLimited;
     }
-    const SendResult r = buses_[m.cfg.bus].router->bus().send(f);
+    const SendResult r = routers_.router(m.cfg.bus).bus().send(f);
     if (r == SendResult::Ok) {
       ++count;
       m.sent = true;
@@ -187,7 +173,7 @@ std::size_t MitHandDriver::transmit(TimeNs) noexcept
 
 Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
 {
-  const int slot = slot_of(from);
+  const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || f.id != MRQP_FW_MIT_MASTER_ID || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;

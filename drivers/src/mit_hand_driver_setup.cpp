@@ -49,37 +49,18 @@ std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter
   std::unique_ptr<MitHandDriver> p(new MitHandDriver());
   p->config_ = config;
   p->buses_.resize(buses.size());
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    p->buses_[s].router = buses[s];
-    p->buses_[s].id_to_motor.fill(-1);
+  for (BusSlot& b : p->buses_) {
+    b.id_to_motor.fill(-1);
   }
   p->motors_.resize(config.motors.size());
   for (std::size_t i = 0; i < config.motors.size(); ++i) {
     p->motors_[i].cfg = config.motors[i];
     p->buses_[config.motors[i].bus].id_to_motor[config.motors[i].motor_id] = static_cast<std::int16_t>(i);
   }
-  p->device_faults_.resize(p->motors_.size());
-  p->bus_faults_.resize(p->buses_.size());
-  if (const std::string why = detail::attach_to_routers(buses, *p); !why.empty()) {
+  if (const std::string why = p->routers_.attach(buses, *p, p->motors_.size()); !why.empty()) {
     return fail(why);
   }
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    p->buses_[s].health.reset(*buses[s]);
-  }
-  p->report_.devices = p->device_faults_.data();
-  p->report_.device_count = p->device_faults_.size();
-  p->report_.buses = p->bus_faults_.data();
-  p->report_.bus_count = p->bus_faults_.size();
   return p;
-}
-
-MitHandDriver::~MitHandDriver()
-{
-  for (BusSlot& b : buses_) {
-    if (b.router != nullptr) {
-      b.router->remove_handler(*this);
-    }
-  }
 }
 
 void MitHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const

@@ -29,19 +29,4 @@ inline std::string check_routers(const std::vector<BusRouter*>& buses)
   return {};
 }
 
-/// Adds `handler` to every router. When a router's table is full, removes it from the routers
-/// already done and returns the reason naming the bus; an empty string on success.
-inline std::string attach_to_routers(const std::vector<BusRouter*>& buses, FrameHandler& handler)
-{
-  for (std::size_t s = 0; s < buses.size(); ++s) {
-    if (!buses[s]->add_handler(handler)) {
-      for (std::size_t k = 0; k < s; ++k) {
-        buses[k]->remove_handler(handler);
-      }
-      return "bus " + std::to_string(s) + ": the router's handler table is full";
-    }
-  }
-  return {};
-}
-
 }  // namespace mrqp::drivers::detail

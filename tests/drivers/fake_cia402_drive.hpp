@@ -1,15 +1,15 @@
-// A fake CANopen CiA 402 drive for the driver tests, built from the firmware_if drive-side state
-// machines (NMT, CiA 402 drive_next/drive_event) and SDO frames, attached to a SimNode as its
-// firmware. It keeps a small object dictionary with CiA 301 default values and rules (PDO
-// mapping only while the PDO is disabled and its entry count is 0, sizes and access checked),
-// produces its heartbeat from 0x1017, applies RPDO1 and sends TPDO1/TPDO2 on SYNC only when they
-// are configured exactly as the mrqp contract maps them. Allocation-free after construction.
+// A fake CANopen CiA 402 drive for the driver tests: the emulated drive side of mrqp drivers
+// (EmulatedCia402Drive: NMT, SDO server and object dictionary with the CiA 301 rules, the CiA 402
+// state machine, RPDO1 / TPDO1 / TPDO2 on SYNC, heartbeat, EMCY) attached to a SimNode as its
+// firmware. Its motion echoes the targets: in CSP the position is the target position, in CST
+// the torque is the target torque. Answers and TPDOs leave response_delay after the request /
+// SYNC. Allocation-free after construction.
 #pragma once
 
+#include <mrqp/drivers/emulated_cia402_drive.hpp>
 #include <mrqp/drivers/sim_bus.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
 
-#include <array>
 #include <cstdint>
 
 namespace drvtest {
@@ -26,7 +26,7 @@ struct FakeDriveOptions {
   mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
 };
 
-class FakeCia402Drive final : public mrqp::drivers::SimListener {
+class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::drivers::EmulatedCia402Drive::Host {
  public:
   FakeCia402Drive(SimNode& node, const FakeDriveOptions& options);
 
@@ -40,74 +40,45 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener {
   /// A fault: EMCY with `code`, then Fault reaction active -> Fault at the next SYNC.
   void inject_fault(std::uint16_t code, std::uint8_t error_register) noexcept;
   /// Stop sending TPDOs (heartbeat continues).
-  void set_pdo_silent(bool silent) noexcept { pdo_silent_ = silent; }
+  void set_pdo_silent(bool silent) noexcept { drive_.set_pdo_silent(silent); }
   /// Answer SDO writes to index:sub with an abort.
-  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
+  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept
+  {
+    drive_.abort_on_write(index, sub, code);
+  }
   /// Report this mode in the mode display instead of 0x6060.
-  void force_mode_display(std::int8_t mode) noexcept { forced_mode_ = mode; force_mode_ = true; }
+  void force_mode_display(std::int8_t mode) noexcept { drive_.force_mode_display(mode); }
 
   // ---- observation ----
-  mrqp_fw_nmt_state nmt() const noexcept { return nmt_; }
-  mrqp_fw_cia402_state state() const noexcept { return state_; }
-  bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept;
-  std::int32_t target_position() const noexcept { return target_position_; }
-  std::int16_t target_torque() const noexcept { return target_torque_; }
+  mrqp_fw_nmt_state nmt() const noexcept { return drive_.nmt(); }
+  mrqp_fw_cia402_state state() const noexcept { return drive_.state(); }
+  bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept
+  {
+    return drive_.od(index, sub, value);
+  }
+  std::int32_t target_position() const noexcept { return drive_.target_position(); }
+  std::int16_t target_torque() const noexcept { return drive_.target_torque(); }
   std::int32_t position() const noexcept { return position_; }
-  std::uint16_t last_controlword() const noexcept { return controlword_; }
-  unsigned sdo_writes() const noexcept { return sdo_writes_; }
-  unsigned syncs() const noexcept { return syncs_; }
-  bool tpdo1_configured() const noexcept;
-  bool tpdo2_configured() const noexcept;
-  bool rpdo1_configured() const noexcept;
+  std::uint16_t last_controlword() const noexcept { return drive_.last_controlword(); }
+  unsigned sdo_writes() const noexcept { return drive_.sdo_writes(); }
+  unsigned syncs() const noexcept { return drive_.syncs(); }
+  bool tpdo1_configured() const noexcept { return drive_.tpdo1_configured(); }
+  bool tpdo2_configured() const noexcept { return drive_.tpdo2_configured(); }
+  bool rpdo1_configured() const noexcept { return drive_.rpdo1_configured(); }
 
  private:
-  struct Entry {
-    std::uint16_t index;
-    std::uint8_t sub;
-    std::uint8_t size;
-    bool writable;
-    std::uint32_t value;
-  };
-  void reset_od(bool communication_only) noexcept;
-  Entry* find(std::uint16_t index, std::uint8_t sub) noexcept;
-  const Entry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
-  bool object_exists(std::uint16_t index) const noexcept;
-  std::uint32_t value(std::uint16_t index, std::uint8_t sub) const noexcept;
-  std::uint32_t check_write(const Entry& e, std::uint32_t v) const noexcept;
-  bool pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob, mrqp_fw_arm_pdo which) const noexcept;
-  void on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sync(TimeNs now) noexcept;
-  void send_later(const mrqp_fw_frame& f, TimeNs at) noexcept;
+  using Drive = mrqp::drivers::EmulatedCia402Drive;
+  void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept override;
+  void on_nmt_reset(bool application) noexcept override;
+  Drive::Feedback on_sync(const Drive& drive, bool new_targets, TimeNs now) noexcept override;
+  void rearm() noexcept;
 
   SimNode& node_;
-  FakeDriveOptions opt_;
-  std::array<Entry, 48> od_{};
-  std::size_t od_count_ = 0;
-  mrqp_fw_nmt_state nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
-  mrqp_fw_cia402_state state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
-  bool booting_ = false;
-  TimeNs heartbeat_due_ = 0;
-  std::uint16_t controlword_ = 0;
-  std::uint16_t rpdo_controlword_ = 0;
-  std::int32_t rpdo_position_ = 0;
-  std::int16_t rpdo_torque_ = 0;
-  bool rpdo_pending_ = false;
-  std::int32_t target_position_ = 0;
-  std::int16_t target_torque_ = 0;
+  Drive drive_;
+  bool powered_ = true;
   std::int32_t position_ = 0;
   std::int32_t velocity_ = 0;
   std::int16_t torque_ = 0;
-  std::uint16_t error_code_ = 0;
-  bool pdo_silent_ = false;
-  bool powered_ = true;
-  bool force_mode_ = false;
-  std::int8_t forced_mode_ = 0;
-  std::uint16_t abort_index_ = 0;
-  std::uint8_t abort_sub_ = 0;
-  std::uint32_t abort_code_ = 0;
-  unsigned sdo_writes_ = 0;
-  unsigned syncs_ = 0;
 };
 
 }  // namespace drvtest

@@ -2,17 +2,15 @@
 // the FD frame, tare, sequence gaps, missing samples.
 #include <catch2/catch.hpp>
 
-#include <mrqp/drivers/bus_router.hpp>
 #include <mrqp/drivers/ft_sensor_driver.hpp>
-#include <mrqp/drivers/sim_bus.hpp>
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "fake_devices.hpp"
 #include "sim_trace.hpp"
+#include "single_bus_rig.hpp"
 
 using namespace mrqp::drivers;
 using drvtest::make_frame;
@@ -20,20 +18,14 @@ using drvtest::WireLog;
 
 namespace {
 
-struct FtRig {
-  explicit FtRig(bool fd)
+struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
+  explicit FtRig(bool fd) : SingleBusRig(fd, milliseconds(1))
   {
-    SimBusConfig bc;
-    bc.data_bps = fd ? 5000000u : 0u;
-    bus = std::make_unique<SimBus>(bc);
-    bus->set_tap(&log);
     SimNodeConfig nc;
     nc.fd = fd;
     nc.name = "master";
-    master = bus->add_node(nc);
-    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus->add_node(nc), 0x30, fd);
-    injector = bus->add_node(nc);
-    router = std::make_unique<BusRouter>(*master);
+    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.add_node(nc), 0x30, fd);
+    injector = bus.add_node(nc);
     FtConfig c;
     c.produce_sync = true;
     FtSensorConfig s;
@@ -50,30 +42,7 @@ struct FtRig {
       driver->start(0);
     }
   }
-  const FaultReport& cycle()
-  {
-    bus->advance_to(t);
-    router->poll(t);
-    const FaultReport& r = driver->update(t);
-    if (hook) {
-      hook(*this);
-    }
-    driver->transmit(t);
-    last = t;
-    t += milliseconds(1);
-    return r;
-  }
-  std::unique_ptr<SimBus> bus;
-  WireLog log;
-  SimNode* master;
-  SimNode* injector;
   std::unique_ptr<drvtest::FakeFtSensor> sensor;
-  std::unique_ptr<BusRouter> router;
-  std::unique_ptr<FtSensorDriver> driver;
-  std::string error;
-  std::function<void(FtRig&)> hook;
-  TimeNs t = 0;
-  TimeNs last = 0;
 };
 
 // Classic frames of sensor 0x31, hand-encoded: three i16 LE values, seq, status.
@@ -205,8 +174,7 @@ TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit"
   CHECK(rig.driver->sensor(0).wrench[0] == Approx(0.0));
   CHECK(rig.driver->sensor(0).wrench[5] == Approx(0.0));
   // Tare command: 0x200 + node, DLC 2: command, command XOR 0xFF.
-  rig.bus->advance_to(rig.t);
-  const auto master = rig.log.frames(static_cast<long>(rig.master->index()), t0);
+  const auto master = rig.master_frames(t0);
   REQUIRE(master.size() >= 2u);
   CHECK(master[0] == "230#01FE");
   CHECK(master[1] == "080#");

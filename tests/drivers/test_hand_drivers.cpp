@@ -1,19 +1,17 @@
 // The MIT-mode hand driver and the CAN FD hand-board driver against fake devices.
 #include <catch2/catch.hpp>
 
-#include <mrqp/drivers/bus_router.hpp>
 #include <mrqp/drivers/fd_hand_driver.hpp>
 #include <mrqp/drivers/mit_hand_driver.hpp>
-#include <mrqp/drivers/sim_bus.hpp>
 
 #include <cmath>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "fake_devices.hpp"
 #include "sim_trace.hpp"
+#include "single_bus_rig.hpp"
 
 using namespace mrqp::drivers;
 using drvtest::make_frame;
@@ -21,16 +19,11 @@ using drvtest::WireLog;
 
 namespace {
 
-struct MitRig {
-  explicit MitRig(TimeNs period = milliseconds(2)) : period(period)
+struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
+  explicit MitRig(TimeNs cycle_period = milliseconds(2)) : SingleBusRig(false, cycle_period)
   {
-    bus.set_tap(&log);
-    SimNodeConfig mc;
-    mc.name = "master";
-    master = bus.add_node(mc);
     motors = std::make_unique<drvtest::FakeMitMotors>(*bus.add_node(SimNodeConfig{}));
     injector = bus.add_node(SimNodeConfig{});
-    router = std::make_unique<BusRouter>(*master);
     MitHandConfig c;
     for (std::uint8_t id = 1; id <= 3; ++id) {
       motors->add(id);
@@ -40,37 +33,7 @@ struct MitRig {
     }
     driver = MitHandDriver::create({router.get()}, c, &error);
   }
-  const FaultReport& cycle()
-  {
-    bus.advance_to(t);
-    router->poll(t);
-    const FaultReport& r = driver->update(t);
-    if (hook) {
-      hook(*this);
-    }
-    driver->transmit(t);
-    last = t;
-    t += period;
-    return r;
-  }
-  std::vector<std::string> master_frames(TimeNs from)
-  {
-    bus.advance_to(t);  // the last transmit's frames on the wire
-    return log.frames(static_cast<long>(master->index()), from);
-  }
-
-  TimeNs period;
-  SimBus bus;
-  WireLog log;
-  SimNode* master;
-  SimNode* injector;
   std::unique_ptr<drvtest::FakeMitMotors> motors;
-  std::unique_ptr<BusRouter> router;
-  std::unique_ptr<MitHandDriver> driver;
-  std::string error;
-  std::function<void(MitRig&)> hook;
-  TimeNs t = 0;
-  TimeNs last = 0;
 };
 
 }  // namespace
@@ -192,22 +155,13 @@ TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "
 
 namespace {
 
-struct FdRig {
-  FdRig()
+struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
+  FdRig() : SingleBusRig(true, milliseconds(1))
   {
-    SimBusConfig bc;
-    bc.data_bps = 5000000;
-    bus = std::make_unique<SimBus>(bc);
-    bus->set_tap(&log);
-    SimNodeConfig mc;
-    mc.fd = true;
-    mc.name = "master";
-    master = bus->add_node(mc);
     SimNodeConfig bcfg;
     bcfg.fd = true;
-    board = std::make_unique<drvtest::FakeHandBoard>(*bus->add_node(bcfg), 2, 20);
-    injector = bus->add_node(bcfg);
-    router = std::make_unique<BusRouter>(*master);
+    board = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 2, 20);
+    injector = bus.add_node(bcfg);
     FdHandConfig c;
     HandBoardConfig h;
     h.board = 2;
@@ -215,30 +169,7 @@ struct FdRig {
     c.boards.push_back(h);
     driver = FdHandDriver::create({router.get()}, c, &error);
   }
-  const FaultReport& cycle()
-  {
-    bus->advance_to(t);
-    router->poll(t);
-    const FaultReport& r = driver->update(t);
-    if (hook) {
-      hook(*this);
-    }
-    driver->transmit(t);
-    last = t;
-    t += milliseconds(1);
-    return r;
-  }
-  std::unique_ptr<SimBus> bus;
-  WireLog log;
-  SimNode* master;
-  SimNode* injector;
   std::unique_ptr<drvtest::FakeHandBoard> board;
-  std::unique_ptr<BusRouter> router;
-  std::unique_ptr<FdHandDriver> driver;
-  std::string error;
-  std::function<void(FdRig&)> hook;
-  TimeNs t = 0;
-  TimeNs last = 0;
 };
 
 }  // namespace
@@ -249,7 +180,7 @@ TEST_CASE("drivers: FD hand board: two 64-byte frames each way per cycle for 20 
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
   rig.cycle();
-  rig.bus->advance_to(rig.t);
+  rig.bus.advance_to(rig.t);
   std::vector<WireEvent> ev;
   for (const auto& e : rig.log.events) {
     if (e.start >= rig.last) {

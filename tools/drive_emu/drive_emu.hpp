@@ -2,14 +2,17 @@
 // simple physical model per joint and fault injection (docs: tools/drive_emu/README.md).
 //
 // DriveEmulator is transport-free: frames in via on_frame(), time moves via advance(), frames out
-// through a FrameSink. emu_sim.hpp attaches it to a SimNode (tests), main.cpp to SocketCAN.
+// through a FrameSink. Each node is the drive side of mrqp drivers (EmulatedCia402Drive: NMT,
+// SDO server, CiA 402 state machine, PDOs) with a joint model behind it. emu_sim.hpp attaches the
+// emulator to a SimNode (tests), main.cpp to SocketCAN.
 #pragma once
 
+#include <mrqp/drivers/emulated_cia402_drive.hpp>
 #include <mrqp/drivers/time.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
 
-#include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,7 +20,7 @@ namespace mrqp::drive_emu {
 
 using mrqp::drivers::TimeNs;
 
-constexpr TimeNs kNever = INT64_MAX;
+constexpr TimeNs kNever = mrqp::drivers::EmulatedCia402Drive::kNever;
 
 struct JointModel {
   double inertia = 0.05;       ///< kg m^2, > 0
@@ -99,15 +102,12 @@ class DriveEmulator {
 
  private:
   void send(const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_nmt(Drive& d, const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sdo(Drive& d, const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sync(Drive& d, TimeNs now) noexcept;
   void step(Drive& d, double dt) noexcept;
   double rand01() noexcept;
 
   EmuConfig cfg_;
   FrameSink& sink_;
-  std::vector<Drive> drives_;
+  std::vector<std::unique_ptr<Drive>> drives_;
   TimeNs next_step_ = 0;
   std::uint64_t rng_ = 1;
   EmuStats stats_{};

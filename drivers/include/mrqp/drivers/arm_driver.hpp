@@ -37,9 +37,9 @@
 #include <vector>
 
 #include "mrqp/drivers/bus_budget.hpp"
-#include "mrqp/drivers/bus_health.hpp"
 #include "mrqp/drivers/bus_router.hpp"
 #include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
 #include "mrqp/drivers/time.hpp"
 #include "mrqp/firmware_if/arm_scale.h"
@@ -113,7 +113,6 @@ class ArmDriver final : public FrameHandler {
   /// nullptr and a message naming the offending drive/field if the configuration is invalid.
   static std::unique_ptr<ArmDriver> create(const std::vector<BusRouter*>& buses, const ArmConfig& config,
                                            std::string* error);
-  ~ArmDriver();
   ArmDriver(const ArmDriver&) = delete;
   ArmDriver& operator=(const ArmDriver&) = delete;
 
@@ -143,7 +142,7 @@ class ArmDriver final : public FrameHandler {
   bool all_disabled() const noexcept;
   std::size_t drive_count() const noexcept { return drives_.size(); }
   const ArmDriveState& drive(std::size_t i) const noexcept { return drives_[i].state; }
-  const FaultReport& faults() const noexcept { return report_; }
+  const FaultReport& faults() const noexcept { return routers_.report(); }
   /// Adds this driver's cyclic traffic on bus `bus` (index as given to create) to a budget.
   void declare_traffic(std::size_t bus, BusBudget& budget) const;
 
@@ -186,8 +185,6 @@ class ArmDriver final : public FrameHandler {
     Claim last_claim = Claim::Accepted;
   };
   struct BusSlot {
-    BusRouter* router = nullptr;
-    BusHealth health;
     std::array<std::int16_t, 128> node_to_drive{};
     bool cyclic_sent = false;            ///< cyclic traffic (RPDOs, SYNC) has started
     std::uint8_t sync_counter = 0;
@@ -196,7 +193,6 @@ class ArmDriver final : public FrameHandler {
 
   ArmDriver() = default;
   void build_writes(Drive& d) const;
-  int slot_of(const BusRouter& router) const noexcept;
   bool send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept;
   void set_pending(Drive& d, const mrqp_fw_frame& f) noexcept;
   void fail_boot(Drive& d, std::uint32_t flags) noexcept;
@@ -208,13 +204,11 @@ class ArmDriver final : public FrameHandler {
   ArmConfig config_;
   std::vector<Drive> drives_;
   std::vector<BusSlot> buses_;
-  std::vector<DeviceFaults> device_faults_;
-  std::vector<BusFaults> bus_faults_;
-  FaultReport report_{};
   ArmPhase phase_ = ArmPhase::Idle;
   TimeNs phase_since_ = 0;
   bool reset_sent_ = false;
   TimeNs next_master_heartbeat_ = 0;
+  RouterAttachment routers_;
 };
 
 }  // namespace mrqp::drivers

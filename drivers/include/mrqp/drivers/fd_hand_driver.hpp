@@ -22,9 +22,9 @@
 #include <vector>
 
 #include "mrqp/drivers/bus_budget.hpp"
-#include "mrqp/drivers/bus_health.hpp"
 #include "mrqp/drivers/bus_router.hpp"
 #include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
 #include "mrqp/drivers/time.hpp"
 #include "mrqp/firmware_if/hand_fd_frame.h"
@@ -68,7 +68,6 @@ class FdHandDriver final : public FrameHandler {
  public:
   static std::unique_ptr<FdHandDriver> create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
                                               std::string* error);
-  ~FdHandDriver();
   FdHandDriver(const FdHandDriver&) = delete;
   FdHandDriver& operator=(const FdHandDriver&) = delete;
 
@@ -87,7 +86,7 @@ class FdHandDriver final : public FrameHandler {
   const HandBoardState& board(std::size_t i) const noexcept { return boards_[i].state; }
   const HandJointState& joint(std::size_t board, std::size_t j) const noexcept { return boards_[board].joints[j]; }
   bool all_enabled() const noexcept;
-  const FaultReport& faults() const noexcept { return report_; }
+  const FaultReport& faults() const noexcept { return routers_.report(); }
   void declare_traffic(std::size_t bus, BusBudget& budget) const;
 
  private:
@@ -107,19 +106,14 @@ class FdHandDriver final : public FrameHandler {
     TimeNs mode_since = 0;
   };
   struct BusSlot {
-    BusRouter* router = nullptr;
-    BusHealth health;
     std::array<std::int16_t, 16> board_to_index{};
   };
   FdHandDriver() = default;
-  int slot_of(const BusRouter& router) const noexcept;
 
   FdHandConfig config_;
   std::vector<Board> boards_;
   std::vector<BusSlot> buses_;
-  std::vector<DeviceFaults> device_faults_;
-  std::vector<BusFaults> bus_faults_;
-  FaultReport report_{};
+  RouterAttachment routers_;
 };
 
 }  // namespace mrqp::drivers

@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "mrqp/drivers/bus_budget.hpp"
-#include "mrqp/drivers/bus_health.hpp"
 #include "mrqp/drivers/bus_router.hpp"
 #include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/time.hpp"
 #include "mrqp/firmware_if/frame.h"
 #include "mrqp/firmware_if/ft_sensor.h"
@@ -64,7 +64,6 @@ class FtSensorDriver final : public FrameHandler {
  public:
   static std::unique_ptr<FtSensorDriver> create(const std::vector<BusRouter*>& buses, const FtConfig& config,
                                                 std::string* error);
-  ~FtSensorDriver();
   FtSensorDriver(const FtSensorDriver&) = delete;
   FtSensorDriver& operator=(const FtSensorDriver&) = delete;
 
@@ -82,7 +81,7 @@ class FtSensorDriver final : public FrameHandler {
   const FtSensorState& sensor(std::size_t i) const noexcept { return sensors_[i].state; }
   /// True while a tare command has not been confirmed by the status bit.
   bool tare_pending(std::size_t i) const noexcept { return sensors_[i].tare_wait; }
-  const FaultReport& faults() const noexcept { return report_; }
+  const FaultReport& faults() const noexcept { return routers_.report(); }
   void declare_traffic(std::size_t bus, BusBudget& budget) const;
 
  private:
@@ -108,24 +107,19 @@ class FtSensorDriver final : public FrameHandler {
     TimeNs tare_since = 0;
   };
   struct BusSlot {
-    BusRouter* router = nullptr;
-    BusHealth health;
     std::array<std::int16_t, 128> node_to_sensor{};
     bool has_sensors = false;
   };
   FtSensorDriver() = default;
-  int slot_of(const BusRouter& router) const noexcept;
   void publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept;
   Claim on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept;
 
   FtConfig config_;
   std::vector<Sensor> sensors_;
   std::vector<BusSlot> buses_;
-  std::vector<DeviceFaults> device_faults_;
-  std::vector<BusFaults> bus_faults_;
-  FaultReport report_{};
   bool started_ = false;
   std::uint64_t arrivals_ = 0;
+  RouterAttachment routers_;
 };
 
 }  // namespace mrqp::drivers

@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "mrqp/drivers/bus_budget.hpp"
-#include "mrqp/drivers/bus_health.hpp"
 #include "mrqp/drivers/bus_router.hpp"
 #include "mrqp/drivers/faults.hpp"
+#include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
 #include "mrqp/drivers/time.hpp"
 #include "mrqp/firmware_if/mit_frame.h"
@@ -61,7 +61,6 @@ class MitHandDriver final : public FrameHandler {
  public:
   static std::unique_ptr<MitHandDriver> create(const std::vector<BusRouter*>& buses, const MitHandConfig& config,
                                                std::string* error);
-  ~MitHandDriver();
   MitHandDriver(const MitHandDriver&) = delete;
   MitHandDriver& operator=(const MitHandDriver&) = delete;
 
@@ -79,7 +78,7 @@ class MitHandDriver final : public FrameHandler {
   bool all_off() const noexcept;
   std::size_t motor_count() const noexcept { return motors_.size(); }
   const MitMotorState& motor(std::size_t i) const noexcept { return motors_[i].state; }
-  const FaultReport& faults() const noexcept { return report_; }
+  const FaultReport& faults() const noexcept { return routers_.report(); }
   void declare_traffic(std::size_t bus, BusBudget& budget) const;
 
  private:
@@ -96,19 +95,14 @@ class MitHandDriver final : public FrameHandler {
     TimeNs mode_since = 0;
   };
   struct BusSlot {
-    BusRouter* router = nullptr;
-    BusHealth health;
     std::array<std::int16_t, 128> id_to_motor{};
   };
   MitHandDriver() = default;
-  int slot_of(const BusRouter& router) const noexcept;
 
   MitHandConfig config_;
   std::vector<Motor> motors_;
   std::vector<BusSlot> buses_;
-  std::vector<DeviceFaults> device_faults_;
-  std::vector<BusFaults> bus_faults_;
-  FaultReport report_{};
+  RouterAttachment routers_;
 };
 
 }  // namespace mrqp::drivers

@@ -1,0 +1,160 @@
+// mrqp drivers -- the drive side of the CiA 402 arm protocol: one emulated drive's firmware.
+//
+// One CANopen node built from the firmware_if drive-side state machines: NMT (reset node /
+// communication, start, stop, pre-operational) with the boot-up message and the heartbeat
+// producer (0x1017); an expedited SDO server over a small object dictionary with CiA 301 default
+// values and rules (PDO mapping only while the PDO is disabled and its entry count is 0, sizes and
+// access checked); the CiA 402 power state machine (mrqp_fw_cia402_drive_next / drive_event);
+// RPDO1 applied and TPDO1/TPDO2 sent on SYNC only when configured exactly as the mrqp contract
+// maps them; EMCY on faults and "error reset" when a fault is reset.
+//
+// It is transport-free: frames come in through on_frame(), time moves through advance(), and
+// frames go out through the Host, which also supplies the motion behind the state machine (what
+// the TPDOs report). The test fakes of tests/drivers put it on a SimNode, mrqp-drive-emu
+// (tools/drive_emu) runs one per node id with a physical joint model. No allocation.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "mrqp/drivers/time.hpp"
+#include "mrqp/firmware_if/arm_pdo.h"
+#include "mrqp/firmware_if/cia402.h"
+#include "mrqp/firmware_if/frame.h"
+#include "mrqp/firmware_if/nmt.h"
+
+namespace mrqp::drivers {
+
+class EmulatedCia402Drive {
+ public:
+  static constexpr TimeNs kNever = INT64_MAX;
+
+  struct Options {
+    std::uint8_t node = 1;       ///< CANopen node id 1..127
+    TimeNs boot_delay = 2000000; ///< reset -> boot-up message (2 ms)
+    TimeNs response_delay = 0;   ///< SDO answer, TPDOs and error reset: ready this long after the request / SYNC
+  };
+
+  /// What the TPDOs report, in wire units.
+  struct Feedback {
+    std::int32_t position = 0;  ///< increments
+    std::int32_t velocity = 0;  ///< increments / s
+    std::int16_t torque = 0;    ///< per mille of the rated torque
+  };
+
+  /// The drive's surroundings: the way out for its frames and the motion behind the state machine.
+  class Host {
+   public:
+    /// A frame of the drive, ready for the bus at `at`.
+    virtual void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept = 0;
+    /// NMT reset node (`application`) or reset communication, once the drive has been reset.
+    virtual void on_nmt_reset(bool application) noexcept;
+    /// A SYNC in Operational, after the state machine took this cycle's RPDO (`new_targets`
+    /// when there was one): moves the motion on and returns what the TPDOs report.
+    virtual Feedback on_sync(const EmulatedCia402Drive& drive, bool new_targets, TimeNs now) noexcept = 0;
+
+   protected:
+    ~Host() = default;
+  };
+
+  /// What a received frame was to this drive.
+  enum class Received : std::uint8_t { Nothing = 0, Nmt, Sdo, Sync, Rpdo };
+
+  /// Powers on: initialisation, then the boot-up message at time options.boot_delay.
+  EmulatedCia402Drive(Host& host, const Options& options) noexcept;
+  EmulatedCia402Drive(const EmulatedCia402Drive&) = delete;
+  EmulatedCia402Drive& operator=(const EmulatedCia402Drive&) = delete;
+
+  /// A frame on the bus at `now` (call advance(now) first when events may be due).
+  Received on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  /// The end of the boot and the heartbeat, when due at or before `now`.
+  void advance(TimeNs now) noexcept;
+  /// The next time advance() has something to do, kNever if none.
+  TimeNs next_event() const noexcept;
+
+  // ---- power and fault injection ----
+  /// Power on again: the object dictionary and the state machines restart, boot-up after the boot delay.
+  void power_on(TimeNs now) noexcept;
+  /// A fault: EMCY with `code` at `now`, Fault reaction active, then Fault at the next SYNC.
+  void raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept;
+  /// No heartbeat from `t` on (a heartbeat due at or after `t` is not sent).
+  void stop_heartbeat_at(TimeNs t) noexcept { heartbeat_stop_at_ = t; }
+  /// No TPDOs (the heartbeat continues).
+  void set_pdo_silent(bool silent) noexcept { pdo_silent_ = silent; }
+  /// Answer SDO writes to index:sub with this abort code.
+  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
+  /// Report this mode in the TPDO2 mode display instead of 0x6060.
+  void force_mode_display(std::int8_t mode) noexcept
+  {
+    forced_mode_ = mode;
+    force_mode_ = true;
+  }
+
+  // ---- observation ----
+  std::uint8_t node() const noexcept { return options_.node; }
+  mrqp_fw_nmt_state nmt() const noexcept { return nmt_; }
+  mrqp_fw_cia402_state state() const noexcept { return state_; }
+  /// An object dictionary entry; false if there is none.
+  bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept;
+  /// An object dictionary value, 0 if there is no such entry.
+  std::uint32_t od_value(std::uint16_t index, std::uint8_t sub) const noexcept;
+  /// Modes of operation (0x6060).
+  std::int8_t mode() const noexcept { return static_cast<std::int8_t>(od_value(0x6060, 0)); }
+  /// Targets of the last RPDO applied at a SYNC (increments, per mille).
+  std::int32_t target_position() const noexcept { return target_position_; }
+  std::int16_t target_torque() const noexcept { return target_torque_; }
+  std::uint16_t last_controlword() const noexcept { return controlword_; }
+  std::uint16_t error_code() const noexcept { return error_code_; }
+  unsigned sdo_writes() const noexcept { return sdo_writes_; }
+  unsigned syncs() const noexcept { return syncs_; }
+  bool rpdo1_configured() const noexcept;
+  bool tpdo1_configured() const noexcept;
+  bool tpdo2_configured() const noexcept;
+
+ private:
+  struct Entry {
+    std::uint16_t index;
+    std::uint8_t sub;
+    std::uint8_t size;
+    bool writable;
+    std::uint32_t value;
+  };
+  void reset_od(bool communication_only) noexcept;
+  Entry* find(std::uint16_t index, std::uint8_t sub) noexcept;
+  const Entry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
+  bool object_exists(std::uint16_t index) const noexcept;
+  std::uint32_t check_write(const Entry& e, std::uint32_t v) const noexcept;
+  bool pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob, mrqp_fw_arm_pdo which) const noexcept;
+  void on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void on_sync(TimeNs now) noexcept;
+
+  Host& host_;
+  Options options_;
+  std::array<Entry, 48> od_{};
+  std::size_t od_count_ = 0;
+  mrqp_fw_nmt_state nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
+  mrqp_fw_cia402_state state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
+  TimeNs boot_at_ = kNever;
+  TimeNs heartbeat_due_ = kNever;
+  TimeNs heartbeat_stop_at_ = kNever;
+  std::uint16_t controlword_ = 0;
+  std::uint16_t rpdo_controlword_ = 0;
+  std::int32_t rpdo_position_ = 0;
+  std::int16_t rpdo_torque_ = 0;
+  bool rpdo_pending_ = false;
+  std::int32_t target_position_ = 0;
+  std::int16_t target_torque_ = 0;
+  std::uint16_t error_code_ = 0;
+  bool pdo_silent_ = false;
+  bool force_mode_ = false;
+  std::int8_t forced_mode_ = 0;
+  std::uint16_t abort_index_ = 0;
+  std::uint8_t abort_sub_ = 0;
+  std::uint32_t abort_code_ = 0;
+  unsigned sdo_writes_ = 0;
+  unsigned syncs_ = 0;
+};
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,431 @@
+// mrqp drivers -- the drive side of the CiA 402 arm protocol (see emulated_cia402_drive.hpp).
+#include "mrqp/drivers/emulated_cia402_drive.hpp"
+
+#include "mrqp/firmware_if/canopen_ids.h"
+#include "mrqp/firmware_if/emcy.h"
+#include "mrqp/firmware_if/objects.h"
+#include "mrqp/firmware_if/sdo.h"
+
+namespace mrqp::drivers {
+
+namespace {
+constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
+
+TimeNs ms(std::uint32_t v) noexcept
+{
+  return static_cast<TimeNs>(v) * 1000000;
+}
+}  // namespace
+
+void EmulatedCia402Drive::Host::on_nmt_reset(bool) noexcept {}
+
+EmulatedCia402Drive::EmulatedCia402Drive(Host& host, const Options& options) noexcept
+    : host_(host), options_(options)
+{
+  reset_od(false);
+  boot_at_ = options_.boot_delay;  // power-on: initialisation, then the boot-up message
+}
+
+void EmulatedCia402Drive::reset_od(bool communication_only) noexcept
+{
+  const std::uint32_t n = options_.node;
+  const Entry comm[] = {
+      {0x1000, 0, 4, false, 0x00020192u},          // device type: CiA 402 drive
+      {0x1006, 0, 4, true, 0},                     // communication cycle period
+      {0x1016, 0, 1, false, 1},                    // consumer heartbeat: one entry
+      {0x1016, 1, 4, true, 0},
+      {0x1017, 0, 2, true, 0},                     // producer heartbeat time
+      {0x1400, 1, 4, true, 0x200u + n},            // RPDO1: valid by default...
+      {0x1400, 2, 1, true, 0xFF},
+      {0x1600, 0, 1, true, 1},                     // ... mapping only the controlword
+      {0x1600, 1, 4, true, 0x60400010u},
+      {0x1600, 2, 4, true, 0},
+      {0x1600, 3, 4, true, 0},
+      {0x1600, 4, 4, true, 0},
+      {0x1800, 1, 4, true, 0x180u + n},            // TPDO1: valid, asynchronous, statusword only
+      {0x1800, 2, 1, true, 0xFF},
+      {0x1801, 1, 4, true, kPdoInvalid | (0x280u + n)},
+      {0x1801, 2, 1, true, 0xFF},
+      {0x1802, 1, 4, true, 0x380u + n},            // TPDO3/4 valid by default: must be disabled
+      {0x1802, 2, 1, true, 0xFF},
+      {0x1803, 1, 4, true, 0x480u + n},
+      {0x1803, 2, 1, true, 0xFF},
+      {0x1A00, 0, 1, true, 1},
+      {0x1A00, 1, 4, true, 0x60410010u},
+      {0x1A00, 2, 4, true, 0},
+      {0x1A00, 3, 4, true, 0},
+      {0x1A00, 4, 4, true, 0},
+      {0x1A01, 0, 1, true, 0},
+      {0x1A01, 1, 4, true, 0},
+      {0x1A01, 2, 4, true, 0},
+      {0x1A01, 3, 4, true, 0},
+      {0x1A01, 4, 4, true, 0},
+  };
+  const Entry app[] = {
+      {0x6060, 0, 1, true, 0},
+      {0x6061, 0, 1, false, 0},
+      {0x6041, 0, 2, false, 0},
+  };
+  if (!communication_only) {
+    od_count_ = 0;
+    for (const Entry& e : comm) {
+      od_[od_count_++] = e;
+    }
+    for (const Entry& e : app) {
+      od_[od_count_++] = e;
+    }
+    return;
+  }
+  for (const Entry& e : comm) {
+    Entry* cur = find(e.index, e.sub);
+    if (cur != nullptr) {
+      *cur = e;
+    }
+  }
+}
+
+EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) noexcept
+{
+  for (std::size_t i = 0; i < od_count_; ++i) {
+    if (od_[i].index == index && od_[i].sub == sub) {
+      return &od_[i];
+    }
+  }
+  return nullptr;
+}
+
+const EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) const noexcept
+{
+  for (std::size_t i = 0; i < od_count_; ++i) {
+    if (od_[i].index == index && od_[i].sub == sub) {
+      return &od_[i];
+    }
+  }
+  return nullptr;
+}
+
+bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept
+{
+  for (std::size_t i = 0; i < od_count_; ++i) {
+    if (od_[i].index == index) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::uint32_t EmulatedCia402Drive::od_value(std::uint16_t index, std::uint8_t sub) const noexcept
+{
+  const Entry* e = find(index, sub);
+  return e != nullptr ? e->value : 0u;
+}
+
+bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept
+{
+  const Entry* e = find(index, sub);
+  if (e == nullptr) {
+    return false;
+  }
+  *value = e->value;
+  return true;
+}
+
+bool EmulatedCia402Drive::pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob,
+                                 mrqp_fw_arm_pdo which) const noexcept
+{
+  if (od_value(comm, 1) != cob || od_value(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
+    return false;
+  }
+  std::uint32_t entries[4] = {0, 0, 0, 0};
+  const unsigned n = mrqp_fw_arm_pdo_mapping(which, entries);
+  if (od_value(map, 0) != n) {
+    return false;
+  }
+  for (unsigned k = 0; k < n; ++k) {
+    if (od_value(map, static_cast<std::uint8_t>(k + 1u)) != entries[k]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool EmulatedCia402Drive::rpdo1_configured() const noexcept
+{
+  return pdo_ok(0x1400, 0x1600, MRQP_FW_COB_RPDO1_BASE + options_.node, MRQP_FW_ARM_RPDO1);
+}
+bool EmulatedCia402Drive::tpdo1_configured() const noexcept
+{
+  return pdo_ok(0x1800, 0x1A00, MRQP_FW_COB_TPDO1_BASE + options_.node, MRQP_FW_ARM_TPDO1);
+}
+bool EmulatedCia402Drive::tpdo2_configured() const noexcept
+{
+  return pdo_ok(0x1801, 0x1A01, MRQP_FW_COB_TPDO2_BASE + options_.node, MRQP_FW_ARM_TPDO2);
+}
+
+TimeNs EmulatedCia402Drive::next_event() const noexcept
+{
+  return boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
+}
+
+void EmulatedCia402Drive::power_on(TimeNs now) noexcept
+{
+  nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
+  state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
+  reset_od(false);
+  heartbeat_due_ = kNever;
+  boot_at_ = now + options_.boot_delay;
+}
+
+void EmulatedCia402Drive::abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept
+{
+  abort_index_ = index;
+  abort_sub_ = sub;
+  abort_code_ = code;
+}
+
+void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept
+{
+  state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT, nullptr);
+  error_code_ = code;
+  mrqp_fw_emcy e{};
+  e.error_code = code;
+  e.error_register = error_register;
+  mrqp_fw_frame f;
+  if (!mrqp_fw_pack_failed(mrqp_fw_emcy_pack(options_.node, &e, &f))) {
+    host_.emit(f, now);
+  }
+}
+
+void EmulatedCia402Drive::advance(TimeNs now) noexcept
+{
+  if (boot_at_ <= now) {
+    // End of initialisation: boot-up message, then pre-operational.
+    boot_at_ = kNever;
+    mrqp_fw_frame f;
+    (void)mrqp_fw_heartbeat_pack(options_.node, MRQP_FW_NMT_STATE_BOOTUP, &f);
+    host_.emit(f, now);
+    nmt_ = mrqp_fw_nmt_boot_complete(nmt_);
+    state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_INIT_COMPLETE, nullptr);
+    const std::uint32_t period = od_value(0x1017, 0);
+    heartbeat_due_ = period > 0u ? now + ms(period) : kNever;
+  }
+  if (heartbeat_due_ <= now) {
+    const std::uint32_t period = od_value(0x1017, 0);
+    if (period == 0u || now >= heartbeat_stop_at_) {
+      heartbeat_due_ = kNever;
+      return;
+    }
+    mrqp_fw_frame f;
+    (void)mrqp_fw_heartbeat_pack(options_.node, nmt_, &f);
+    host_.emit(f, now);
+    heartbeat_due_ += ms(period);
+    if (heartbeat_due_ <= now) {
+      heartbeat_due_ = now + ms(period);
+    }
+  }
+}
+
+EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
+{
+  if (f.id == MRQP_FW_COB_NMT) {
+    on_nmt(f, now);
+    return Received::Nmt;
+  }
+  if (boot_at_ != kNever || nmt_ == MRQP_FW_NMT_STATE_BOOTUP) {
+    return Received::Nothing;
+  }
+  if (f.id == MRQP_FW_COB_SDO_RX_BASE + options_.node &&
+      (nmt_ == MRQP_FW_NMT_STATE_PRE_OPERATIONAL || nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL)) {
+    on_sdo(f, now);
+    return Received::Sdo;
+  }
+  if (nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL) {
+    return Received::Nothing;
+  }
+  if (f.id == MRQP_FW_COB_SYNC) {
+    on_sync(now);
+    return Received::Sync;
+  }
+  if (f.id == MRQP_FW_COB_RPDO1_BASE + options_.node && rpdo1_configured()) {
+    mrqp_fw_arm_rpdo1 p;
+    if (mrqp_fw_arm_unpack_rpdo1(&f, options_.node, &p) == MRQP_FW_OK) {
+      rpdo_controlword_ = p.controlword;
+      rpdo_position_ = p.target_position;
+      rpdo_torque_ = p.target_torque;
+      rpdo_pending_ = true;
+      return Received::Rpdo;
+    }
+  }
+  return Received::Nothing;
+}
+
+void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept
+{
+  mrqp_fw_nmt_cmd cmd;
+  std::uint8_t target = 0;
+  if (mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || !mrqp_fw_nmt_addresses(target, options_.node)) {
+    return;
+  }
+  const mrqp_fw_nmt_state next = mrqp_fw_nmt_next_state(nmt_, cmd);
+  if (next == MRQP_FW_NMT_STATE_BOOTUP && (cmd == MRQP_FW_NMT_RESET_NODE || cmd == MRQP_FW_NMT_RESET_COMM)) {
+    const bool application = cmd == MRQP_FW_NMT_RESET_NODE;
+    reset_od(!application);
+    if (application) {
+      state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
+      controlword_ = 0;
+      rpdo_pending_ = false;
+      error_code_ = 0;
+    }
+    nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
+    heartbeat_due_ = kNever;
+    boot_at_ = now + options_.boot_delay;
+    host_.on_nmt_reset(application);
+    return;
+  }
+  nmt_ = next;
+}
+
+std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) const noexcept
+{
+  if (!e.writable) {
+    return MRQP_FW_SDO_ABORT_READ_ONLY;
+  }
+  const std::uint16_t i = e.index;
+  const bool is_map = (i >= 0x1600 && i <= 0x1603) || (i >= 0x1A00 && i <= 0x1A03);
+  const bool is_comm = (i >= 0x1400 && i <= 0x1403) || (i >= 0x1800 && i <= 0x1803);
+  if (is_map) {
+    const std::uint16_t comm = static_cast<std::uint16_t>(i - 0x200u);
+    if ((od_value(comm, 1) & kPdoInvalid) == 0u) {
+      return MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE;  // mapping changes only while the PDO is disabled
+    }
+    if (e.sub > 0 && od_value(i, 0) != 0u) {
+      return MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE;  // entries only while the entry count is 0
+    }
+    if (e.sub == 0 && v > 0u) {
+      std::uint32_t bits = 0;
+      for (std::uint32_t k = 1; k <= v && k <= 4u; ++k) {
+        const std::uint32_t entry = od_value(i, static_cast<std::uint8_t>(k));
+        const std::uint16_t obj = static_cast<std::uint16_t>(entry >> 16);
+        if (entry == 0u || !(obj == 0x6040 || obj == 0x6041 || obj == 0x607A || obj == 0x6064 || obj == 0x6071 ||
+                             obj == 0x6077 || obj == 0x606C || obj == 0x603F || obj == 0x6061)) {
+          return MRQP_FW_SDO_ABORT_NOT_MAPPABLE;
+        }
+        bits += entry & 0xFFu;
+      }
+      if (v > 4u || bits > 64u) {
+        return MRQP_FW_SDO_ABORT_PDO_LENGTH;
+      }
+    }
+  }
+  if (is_comm && e.sub == 1) {
+    const bool now_valid = (od_value(i, 1) & kPdoInvalid) == 0u;
+    const bool to_valid = (v & kPdoInvalid) == 0u;
+    if (now_valid && to_valid && v != od_value(i, 1)) {
+      return MRQP_FW_SDO_ABORT_INVALID_VALUE;  // change the COB-ID only while disabled
+    }
+  }
+  if (i == 0x6060 && v != static_cast<std::uint32_t>(MRQP_FW_MODE_CSP) &&
+      v != static_cast<std::uint32_t>(MRQP_FW_MODE_CST)) {
+    return MRQP_FW_SDO_ABORT_INVALID_VALUE;
+  }
+  return 0u;
+}
+
+void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept
+{
+  const TimeNs at = now + options_.response_delay;
+  mrqp_fw_sdo_msg m;
+  mrqp_fw_frame out;
+  if (mrqp_fw_sdo_unpack(&f, &m) != MRQP_FW_OK) {
+    (void)mrqp_fw_sdo_pack_abort(options_.node, 1, 0, 0, MRQP_FW_SDO_ABORT_COMMAND, &out);
+    host_.emit(out, at);
+    return;
+  }
+  std::uint32_t abort = 0;
+  Entry* e = find(m.index, m.subindex);
+  if (m.kind == MRQP_FW_SDO_DOWNLOAD_INIT_REQ) {
+    ++sdo_writes_;
+    std::uint32_t v = 0;
+    for (unsigned k = 0; k < m.n && k < 4u; ++k) {
+      v |= static_cast<std::uint32_t>(m.data[k]) << (8u * k);
+    }
+    if (!m.expedited) {
+      abort = MRQP_FW_SDO_ABORT_COMMAND;  // segmented writes are not needed by this drive
+    } else if (e == nullptr) {
+      abort = object_exists(m.index) ? MRQP_FW_SDO_ABORT_NO_SUBINDEX : MRQP_FW_SDO_ABORT_NO_OBJECT;
+    } else if (m.n != e->size) {
+      abort = MRQP_FW_SDO_ABORT_TYPE_LENGTH;
+    } else if (abort_code_ != 0u && m.index == abort_index_ && m.subindex == abort_sub_) {
+      abort = abort_code_;
+    } else {
+      abort = check_write(*e, v);
+    }
+    if (abort == 0u) {
+      e->value = v;
+      if (m.index == 0x6060) {
+        find(0x6061, 0)->value = v;  // mode display follows
+      }
+      if (m.index == 0x1017) {
+        heartbeat_due_ = v > 0u ? now + ms(v) : kNever;
+      }
+      (void)mrqp_fw_sdo_pack_download_resp(options_.node, m.index, m.subindex, &out);
+    }
+  } else if (m.kind == MRQP_FW_SDO_UPLOAD_INIT_REQ) {
+    if (e == nullptr) {
+      abort = object_exists(m.index) ? MRQP_FW_SDO_ABORT_NO_SUBINDEX : MRQP_FW_SDO_ABORT_NO_OBJECT;
+    } else {
+      std::uint8_t d[4];
+      for (unsigned k = 0; k < 4u; ++k) {
+        d[k] = static_cast<std::uint8_t>((e->value >> (8u * k)) & 0xFFu);
+      }
+      (void)mrqp_fw_sdo_pack_upload_resp(options_.node, m.index, m.subindex, d, e->size, &out);
+    }
+  } else {
+    abort = MRQP_FW_SDO_ABORT_COMMAND;
+  }
+  if (abort != 0u) {
+    (void)mrqp_fw_sdo_pack_abort(options_.node, 1, m.index, m.subindex, abort, &out);
+  }
+  host_.emit(out, at);
+}
+
+void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
+{
+  const TimeNs at = now + options_.response_delay;
+  ++syncs_;
+  // Fault reaction completes at the next SYNC.
+  state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT_REACTION_DONE, nullptr);
+  const bool new_targets = rpdo_pending_;
+  if (rpdo_pending_) {
+    rpdo_pending_ = false;
+    const mrqp_fw_cia402_state before = state_;
+    state_ = mrqp_fw_cia402_drive_next(state_, rpdo_controlword_, controlword_, nullptr);
+    controlword_ = rpdo_controlword_;
+    target_position_ = rpdo_position_;
+    target_torque_ = rpdo_torque_;
+    if (before == MRQP_FW_CIA402_FAULT && state_ != MRQP_FW_CIA402_FAULT) {
+      error_code_ = 0;
+      mrqp_fw_emcy e{};
+      mrqp_fw_frame f;
+      (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset
+      host_.emit(f, at);
+    }
+  }
+  const Feedback fb = host_.on_sync(*this, new_targets, now);
+  if (pdo_silent_) {
+    return;
+  }
+  mrqp_fw_frame f;
+  if (tpdo1_configured()) {
+    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, MRQP_FW_SW_VOLTAGE_ENABLED), fb.position, fb.torque};
+    (void)mrqp_fw_arm_pack_tpdo1(options_.node, &t, &f);
+    host_.emit(f, at);
+  }
+  if (tpdo2_configured()) {
+    const mrqp_fw_arm_tpdo2 t{fb.velocity, error_code_, force_mode_ ? forced_mode_ : mode()};
+    (void)mrqp_fw_arm_pack_tpdo2(options_.node, &t, &f);
+    host_.emit(f, at);
+  }
+}
+
+}  // namespace mrqp::drivers
