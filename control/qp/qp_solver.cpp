@@ -565,19 +565,20 @@ QpStatus QpSolver::factorReducedHessian() noexcept {
 }
 
 // Profile (envelope) Cholesky Hs = L Lᵀ, stored as U = Lᵀ in Lz_ (column i of U = row i of L,
-// rows h_lo_[i] … i). Fill-in stays inside the profile. Taken only when the profile is at most a
-// quarter of the full matrix and every pivot is safely positive; false leaves the null-space
+// rows h_lo_[i] … i). Fill-in stays inside the profile. Taken only when the profile is at most
+// half of the lower triangle and every pivot is safely positive; false leaves the null-space
 // path to handle H (including a semi-definite one).
 bool QpSolver::factorHessianProfile() noexcept {
   const int n = n_;
-  if (n == 0 || 4 * h_envelope_ > static_cast<long>(n) * n) return false;
+  if (n == 0) return false;
   long profile = 0;
   double scale = 0.0;
   for (int i = 0; i < n; ++i) {
     profile += i - std::min(h_lo_[static_cast<std::size_t>(i)], i) + 1;
     scale = std::max(scale, Hs_(i, i));
   }
-  if (4 * profile > static_cast<long>(n) * n || !(scale > 0.0)) return false;
+  // at most half of the lower triangle (a dense H keeps the null-space path)
+  if (4 * profile > static_cast<long>(n) * (n + 1) || !(scale > 0.0)) return false;
   const double threshold = settings_.definiteness_tolerance * scale;
   for (int i = 0; i < n; ++i) {
     const int fi = std::min(h_lo_[static_cast<std::size_t>(i)], i);
