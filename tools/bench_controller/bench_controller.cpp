@@ -2,7 +2,8 @@
 // of scene files run closed loop on their own models, as mrqp-scene runs them (docs/BENCHMARKS.md,
 // "Controller cycle").
 //
-//   bench_controller [--cycles N] [--scene NAME|FILE]... [--csv FILE] [--dump-qp DIR] [--no-timing]
+//   bench_controller [--cycles N] [--scene NAME|FILE]... [--csv FILE] [--dump-qp DIR]
+//                    [--dump-cycles K,K,...] [--no-timing]
 //
 //   --cycles N     control cycles per scene (default 5000); the scene's own duration is ignored
 //   --scene S      a scene: a file, or a NAME of tools/scenes (NAME.yaml); repeatable. Default:
@@ -11,6 +12,8 @@
 //                  thread's CPU time of the cycle (µs), the solver status and its steps
 //   --dump-qp DIR  writes the QP of cycles 0 and 1000 of every scene (as assembled by update(),
 //                  before the solve) in the QP text format (docs/qp.md) as DIR/<scene>_c<k>.qp
+//   --dump-cycles L  the cycles --dump-qp writes, a comma-separated list (default 0,1000); the
+//                  assembly records of tests/data/qp/assembly are --dump-cycles 0,1,500
 //   --no-timing    runs the cycles and nothing else (no clock is read): for instruction counts,
 //                  valgrind --tool=callgrind --toggle-collect='*MultiRobotProblem::update*'
 //                  --toggle-collect='*MultiRobotProblem::solve*' (callgrind_cycles.sh)
@@ -41,12 +44,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using mrqp::qp::QpStatus;
 
-constexpr int kDumpCycles[] = {0, 1000};
-
 struct Options {
   long cycles = 5000;
   std::vector<std::string> scenes;
   std::string csv, dump_dir;
+  std::vector<long> dump_cycles{0, 1000};
   bool timing = true;
 };
 
@@ -54,7 +56,7 @@ int usage(const char* msg) {
   if (msg) std::fprintf(stderr, "bench_controller: %s\n", msg);
   std::fprintf(stderr,
                "usage: bench_controller [--cycles N] [--scene NAME|FILE]... [--csv FILE] [--dump-qp DIR] "
-               "[--no-timing]\n"
+               "[--dump-cycles K,K,...] [--no-timing]\n"
                "  Runs each scene closed loop for N cycles (default 5000) and prints the time of\n"
                "  update() + solve() per cycle. Default scenes: panda_reach jvrc1_standing comanipulation\n"
                "  (%s).\n",
@@ -143,8 +145,24 @@ std::string range(int lo, int hi) {
   return lo == hi ? std::to_string(lo) : std::to_string(lo) + "–" + std::to_string(hi);
 }
 
-bool dumpCycle(long k) {
-  return std::find(std::begin(kDumpCycles), std::end(kDumpCycles), k) != std::end(kDumpCycles);
+bool dumpCycle(const Options& opt, long k) {
+  return std::find(opt.dump_cycles.begin(), opt.dump_cycles.end(), k) != opt.dump_cycles.end();
+}
+
+/// "0,1,500" → {0, 1, 500}; false on anything but non-negative integers.
+bool parseCycles(const std::string& text, std::vector<long>& out) {
+  out.clear();
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t end = std::min(text.find(',', pos), text.size());
+    const std::string item = text.substr(pos, end - pos);
+    char* stop = nullptr;
+    const long v = std::strtol(item.c_str(), &stop, 10);
+    if (item.empty() || *stop != '\0' || v < 0) return false;
+    out.push_back(v);
+    pos = end + 1;
+  }
+  return !out.empty();
 }
 
 /// Runs one scene closed loop. Returns false on a load error (message printed).
@@ -180,7 +198,7 @@ bool runScene(const std::string& path, const Options& opt, std::ofstream& csv, S
       const auto t1 = Clock::now();
       const double c1 = cpuMicros();
       // The dump is written between the two timed parts and timed by neither.
-      if (!opt.dump_dir.empty() && dumpCycle(k)) {
+      if (!opt.dump_dir.empty() && dumpCycle(opt, k)) {
         const std::string name = r.name + "_c" + std::to_string(k);
         std::string error;
         if (!mrqp::qp::dumpProblem(opt.dump_dir + "/" + name + ".qp", p.qp(), name, error)) {
@@ -256,6 +274,9 @@ int main(int argc, char** argv) {
       const char* v = next();
       if (!v) return usage("--dump-qp needs a directory");
       opt.dump_dir = v;
+    } else if (a == "--dump-cycles") {
+      const char* v = next();
+      if (!v || !parseCycles(v, opt.dump_cycles)) return usage("--dump-cycles needs a list like 0,1,500");
     } else if (a == "--no-timing") {
       opt.timing = false;
     } else if (a == "-h" || a == "--help") {
@@ -307,8 +328,8 @@ int main(int argc, char** argv) {
                   r.cycle.p90, r.cycle.p99, r.cycle.max, r.update.median, r.solve.median, r.cpu.median, r.cpu.p99,
                   r.mean_iterations, r.max_iterations);
     std::printf("\nload average (1 min) at end: %s\n", loadAverage().c_str());
-    if (!opt.dump_dir.empty() && opt.cycles <= kDumpCycles[1])
-      std::printf("note: %ld cycles: only the QP of cycle 0 was dumped\n", opt.cycles);
+    for (const long k : opt.dump_cycles)
+      if (!opt.dump_dir.empty() && opt.cycles <= k) std::printf("note: %ld cycles: cycle %ld was not dumped\n", opt.cycles, k);
   }
   return ok ? 0 : 1;
 }
