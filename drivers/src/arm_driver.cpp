@@ -199,6 +199,41 @@ SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept
   return SetpointResult::Ok;
 }
 
+JointMode ArmDriver::joint_mode(std::size_t i) const noexcept
+{
+  return i < drives_.size() && drives_[i].cfg.mode == MRQP_FW_MODE_CST ? JointMode::Torque : JointMode::Position;
+}
+
+SetpointResult ArmDriver::set_joint(std::size_t i, const JointCommand& c) noexcept
+{
+  if (i >= drives_.size()) {
+    return SetpointResult::BadIndex;
+  }
+  if (drives_[i].cfg.mode == MRQP_FW_MODE_CST) {
+    return set_torque(i, c.torque);
+  }
+  // CSP: target position and torque feed-forward; the worse of the two results.
+  const SetpointResult p = set_position(i, c.position);
+  const SetpointResult t = set_torque(i, c.torque);
+  return static_cast<std::uint8_t>(p) >= static_cast<std::uint8_t>(t) ? p : t;
+}
+
+JointFeedback ArmDriver::joint(std::size_t i) const noexcept
+{
+  JointFeedback out;
+  if (i >= drives_.size()) {
+    return out;
+  }
+  const ArmDriveState& s = drives_[i].state;
+  out.position = s.position;
+  out.velocity = s.velocity;
+  out.torque = s.torque;
+  out.valid = s.valid;
+  out.fresh = s.fresh;
+  out.timestamp = s.timestamp;
+  return out;
+}
+
 const FaultReport& ArmDriver::update(TimeNs now) noexcept
 {
   routers_.start_cycle();

@@ -25,6 +25,65 @@ void FdHandDriver::request_disable(TimeNs now) noexcept
   }
 }
 
+void FdHandDriver::request_quick_stop(TimeNs now) noexcept
+{
+  for (Board& b : boards_) {
+    b.mode_requested = MRQP_FW_HAND_MODE_HOLD;
+    b.mode_since = now;
+    b.sp_valid = 0;
+    b.state.enabled = false;
+  }
+}
+
+bool FdHandDriver::locate(std::size_t flat, std::size_t* board, std::size_t* joint) const noexcept
+{
+  for (std::size_t i = 0; i < boards_.size(); ++i) {
+    const std::size_t n = boards_[i].cfg.joints;
+    if (flat < n) {
+      *board = i;
+      *joint = flat;
+      return true;
+    }
+    flat -= n;
+  }
+  return false;
+}
+
+JointMode FdHandDriver::joint_mode(std::size_t) const noexcept
+{
+  return config_.enabled_mode == MRQP_FW_HAND_MODE_TORQUE ? JointMode::Torque : JointMode::Position;
+}
+
+SetpointResult FdHandDriver::set_joint(std::size_t flat, const JointCommand& c) noexcept
+{
+  std::size_t board = 0;
+  std::size_t j = 0;
+  if (!locate(flat, &board, &j)) {
+    return SetpointResult::BadIndex;
+  }
+  // A double outside float's range becomes an infinite float, refused like any non-finite value.
+  return set_joint(board, j, static_cast<float>(c.position), static_cast<float>(c.velocity),
+                   static_cast<float>(c.torque));
+}
+
+JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept
+{
+  JointFeedback out;
+  std::size_t board = 0;
+  std::size_t j = 0;
+  if (!locate(flat, &board, &j)) {
+    return out;
+  }
+  const Board& b = boards_[board];
+  out.position = static_cast<double>(b.joints[j].position);
+  out.velocity = static_cast<double>(b.joints[j].velocity);
+  out.torque = static_cast<double>(b.joints[j].torque);
+  out.valid = b.state.valid;
+  out.fresh = b.state.fresh;
+  out.timestamp = b.state.timestamp;
+  return out;
+}
+
 bool FdHandDriver::all_enabled() const noexcept
 {
   for (const Board& b : boards_) {

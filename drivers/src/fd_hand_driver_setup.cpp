@@ -62,6 +62,7 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
     Board& b = p->boards_[i];
     b.cfg = config.boards[i];
     b.chunks = mrqp_fw_hand_frames_needed(b.cfg.joints);
+    p->joint_count_ += b.cfg.joints;
     p->buses_[b.cfg.bus].board_to_index[b.cfg.board] = static_cast<std::int16_t>(i);
   }
   if (const std::string why = p->routers_.attach(buses, *p, p->boards_.size()); !why.empty()) {

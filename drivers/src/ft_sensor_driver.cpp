@@ -16,6 +16,33 @@ void FtSensorDriver::start(TimeNs) noexcept
   }
 }
 
+bool FtSensorDriver::ready() const noexcept
+{
+  if (!started_) {
+    return false;
+  }
+  for (const Sensor& s : sensors_) {
+    if (!s.state.valid) {
+      return false;
+    }
+  }
+  return true;
+}
+
+WrenchFeedback FtSensorDriver::wrench(std::size_t i) const noexcept
+{
+  WrenchFeedback out;
+  if (i >= sensors_.size()) {
+    return out;
+  }
+  const FtSensorState& s = sensors_[i].state;
+  out.wrench = s.wrench;
+  out.valid = s.valid;
+  out.fresh = s.fresh;
+  out.timestamp = s.timestamp;
+  return out;
+}
+
 bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept
 {
   if (i >= sensors_.size()) {

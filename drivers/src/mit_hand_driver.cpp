@@ -7,6 +7,7 @@ namespace mrqp::drivers {
 
 void MitHandDriver::request_enable(TimeNs now) noexcept
 {
+  quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::On) {
       m.state.mode = MitMode::Enabling;
@@ -19,6 +20,7 @@ void MitHandDriver::request_enable(TimeNs now) noexcept
 
 void MitHandDriver::request_disable(TimeNs now) noexcept
 {
+  quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::Off) {
       m.state.mode = MitMode::Disabling;
@@ -27,6 +29,48 @@ void MitHandDriver::request_disable(TimeNs now) noexcept
     }
     m.sp_valid = false;
   }
+}
+
+void MitHandDriver::request_quick_stop(TimeNs) noexcept
+{
+  quick_stop_ = true;
+  for (Motor& m : motors_) {
+    m.sp = mrqp_fw_mit_cmd{};
+    m.sp.p = m.state.position;
+    m.sp.kd = m.cfg.quick_stop_kd;
+    m.sp_valid = true;
+  }
+}
+
+SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) noexcept
+{
+  if (i >= motors_.size()) {
+    return SetpointResult::BadIndex;
+  }
+  const MitMotorConfig& cfg = motors_[i].cfg;
+  mrqp_fw_mit_cmd cmd{};
+  cmd.p = static_cast<float>(c.position);
+  cmd.v = static_cast<float>(c.velocity);
+  cmd.kp = c.stiffness < 0.0 ? cfg.default_kp : static_cast<float>(c.stiffness);
+  cmd.kd = c.damping < 0.0 ? cfg.default_kd : static_cast<float>(c.damping);
+  cmd.t = static_cast<float>(c.torque);
+  return set_command(i, cmd);
+}
+
+JointFeedback MitHandDriver::joint(std::size_t i) const noexcept
+{
+  JointFeedback out;
+  if (i >= motors_.size()) {
+    return out;
+  }
+  const MitMotorState& s = motors_[i].state;
+  out.position = static_cast<double>(s.position);
+  out.velocity = static_cast<double>(s.velocity);
+  out.torque = static_cast<double>(s.torque);
+  out.valid = s.valid;
+  out.fresh = s.fresh;
+  out.timestamp = s.timestamp;
+  return out;
 }
 
 bool MitHandDriver::all_on() const noexcept
@@ -55,6 +99,9 @@ SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& 
     return SetpointResult::BadIndex;
   }
   Motor& m = motors_[i];
+  if (quick_stop_) {
+    return SetpointResult::Ok;  // held with damping until the next enable / disable request
+  }
   if (!detail::finite_f(cmd.p) || !detail::finite_f(cmd.v) || !detail::finite_f(cmd.kp) ||
       !detail::finite_f(cmd.kd) || !detail::finite_f(cmd.t)) {
     ++m.faults.refused_setpoints;

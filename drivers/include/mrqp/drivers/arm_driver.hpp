@@ -26,6 +26,10 @@
 // real-time safe: no allocation, no lock, no exception, no stdio; failures are return values and
 // fault flags. Until a drive is enabled and given a setpoint, its RPDO holds its measured position
 // (raw increments) with zero torque.
+//
+// As a JointDevice (device.hpp) joint i is drive i: a CSP drive is JointMode::Position
+// (set_joint: target position, and the command's torque as the RPDO's torque feed-forward; the
+// RPDO has no velocity), a CST drive JointMode::Torque (set_joint: target torque).
 #pragma once
 
 #include <array>
@@ -38,6 +42,7 @@
 
 #include "mrqp/drivers/bus_budget.hpp"
 #include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
@@ -107,7 +112,7 @@ struct ArmDriveState {
   TimeNs timestamp = 0;              ///< reception time of the last TPDO1
 };
 
-class ArmDriver final : public FrameHandler {
+class ArmDriver final : public JointDevice, public FrameHandler {
  public:
   /// Validates the configuration and registers with the routers (setup; allocates). Returns
   /// nullptr and a message naming the offending drive/field if the configuration is invalid.
@@ -116,22 +121,31 @@ class ArmDriver final : public FrameHandler {
   ArmDriver(const ArmDriver&) = delete;
   ArmDriver& operator=(const ArmDriver&) = delete;
 
+  const char* kind() const noexcept override { return "arm"; }
   /// Starts (or restarts) the boot sequence.
-  void start(TimeNs now) noexcept;
+  void start(TimeNs now) noexcept override;
+  /// Running and every drive reports Operation enabled.
+  bool ready() const noexcept override { return phase_ == ArmPhase::Running && all_enabled(); }
   /// Moves every drive to Operation enabled (resetting faults).
-  void request_enable(TimeNs now) noexcept;
+  void request_enable(TimeNs now) noexcept override;
   /// Moves every drive to Switch on disabled.
-  void request_disable(TimeNs now) noexcept;
+  void request_disable(TimeNs now) noexcept override;
   /// Quick stop: Operation enabled -> Quick stop active (others to Switch on disabled).
-  void request_quick_stop(TimeNs now) noexcept;
+  void request_quick_stop(TimeNs now) noexcept override;
 
   /// After polling the buses: timeouts, state machines, fault flags of this cycle.
-  const FaultReport& update(TimeNs now) noexcept;
+  const FaultReport& update(TimeNs now) noexcept override;
   /// Setpoints for the next transmit(): target position (CSP) / target torque (CST).
   SetpointResult set_position(std::size_t drive, double rad) noexcept;
   SetpointResult set_torque(std::size_t drive, double nm) noexcept;
   /// Sends this cycle's frames. Returns the number of frames queued.
-  std::size_t transmit(TimeNs now) noexcept;
+  std::size_t transmit(TimeNs now) noexcept override;
+
+  // JointDevice: joint i is drive i.
+  std::size_t joint_count() const noexcept override { return drives_.size(); }
+  JointMode joint_mode(std::size_t joint) const noexcept override;
+  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  JointFeedback joint(std::size_t joint) const noexcept override;
 
   Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
@@ -142,9 +156,9 @@ class ArmDriver final : public FrameHandler {
   bool all_disabled() const noexcept;
   std::size_t drive_count() const noexcept { return drives_.size(); }
   const ArmDriveState& drive(std::size_t i) const noexcept { return drives_[i].state; }
-  const FaultReport& faults() const noexcept { return routers_.report(); }
+  const FaultReport& faults() const noexcept override { return routers_.report(); }
   /// Adds this driver's cyclic traffic on bus `bus` (index as given to create) to a budget.
-  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct SdoWrite {

@@ -12,6 +12,12 @@
 // enabling, it is commanded to its measured position with zero velocity and torque.
 //
 // Cycle: BusRouter::poll, update(now), set_joint(), transmit(now). Real-time safe after create().
+//
+// As a JointDevice (device.hpp) the joints of all boards are numbered in configuration order
+// (board 0's joints, then board 1's, ...). The mode is that of enabled_mode: POSITION ->
+// JointMode::Position (position, velocity and feed-forward torque; the board's own gains, the
+// command's stiffness and damping are not on the wire), TORQUE -> JointMode::Torque.
+// request_quick_stop() puts every board into HOLD (the board holds its position; setpoints ignored).
 #pragma once
 
 #include <array>
@@ -23,6 +29,7 @@
 
 #include "mrqp/drivers/bus_budget.hpp"
 #include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
@@ -64,21 +71,33 @@ struct HandBoardState {
   TimeNs timestamp = 0;          ///< reception time of the last feedback frame
 };
 
-class FdHandDriver final : public FrameHandler {
+class FdHandDriver final : public JointDevice, public FrameHandler {
  public:
   static std::unique_ptr<FdHandDriver> create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
                                               std::string* error);
   FdHandDriver(const FdHandDriver&) = delete;
   FdHandDriver& operator=(const FdHandDriver&) = delete;
 
-  void request_enable(TimeNs now) noexcept;
-  void request_disable(TimeNs now) noexcept;
+  const char* kind() const noexcept override { return "fd_hand"; }
+  /// Nothing to boot: boards are commanded (DISABLED) from the first transmit().
+  void start(TimeNs) noexcept override {}
+  bool ready() const noexcept override { return all_enabled(); }
+  void request_enable(TimeNs now) noexcept override;
+  void request_disable(TimeNs now) noexcept override;
+  /// Every board to HOLD.
+  void request_quick_stop(TimeNs now) noexcept override;
 
-  const FaultReport& update(TimeNs now) noexcept;
+  const FaultReport& update(TimeNs now) noexcept override;
   /// Setpoint of joint `joint` of board `board` (index in the configuration).
   SetpointResult set_joint(std::size_t board, std::size_t joint, float position, float velocity,
                            float torque) noexcept;
-  std::size_t transmit(TimeNs now) noexcept;
+  std::size_t transmit(TimeNs now) noexcept override;
+
+  // JointDevice: the joints of all boards in configuration order.
+  std::size_t joint_count() const noexcept override { return joint_count_; }
+  JointMode joint_mode(std::size_t joint) const noexcept override;
+  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  JointFeedback joint(std::size_t joint) const noexcept override;
 
   Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
@@ -86,8 +105,8 @@ class FdHandDriver final : public FrameHandler {
   const HandBoardState& board(std::size_t i) const noexcept { return boards_[i].state; }
   const HandJointState& joint(std::size_t board, std::size_t j) const noexcept { return boards_[board].joints[j]; }
   bool all_enabled() const noexcept;
-  const FaultReport& faults() const noexcept { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+  const FaultReport& faults() const noexcept override { return routers_.report(); }
+  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Board {
@@ -109,8 +128,11 @@ class FdHandDriver final : public FrameHandler {
     std::array<std::int16_t, 16> board_to_index{};
   };
   FdHandDriver() = default;
+  /// Board and joint of a flat joint index; false when out of range.
+  bool locate(std::size_t flat, std::size_t* board, std::size_t* joint) const noexcept;
 
   FdHandConfig config_;
+  std::size_t joint_count_ = 0;
   std::vector<Board> boards_;
   std::vector<BusSlot> buses_;
   RouterAttachment routers_;

@@ -13,6 +13,8 @@
 //    the status bit "tared".
 //
 // Cycle: BusRouter::poll, update(now), request_tare(), transmit(now). Real-time safe after create().
+// As a WrenchDevice (device.hpp) sensor i is the configured sensor i; ready() once started and
+// every sensor has delivered a sample.
 #pragma once
 
 #include <array>
@@ -25,6 +27,7 @@
 
 #include "mrqp/drivers/bus_budget.hpp"
 #include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/time.hpp"
@@ -60,29 +63,32 @@ struct FtSensorState {
   TimeNs timestamp = 0;            ///< reception time of the frame that completed the sample
 };
 
-class FtSensorDriver final : public FrameHandler {
+class FtSensorDriver final : public WrenchDevice, public FrameHandler {
  public:
   static std::unique_ptr<FtSensorDriver> create(const std::vector<BusRouter*>& buses, const FtConfig& config,
                                                 std::string* error);
   FtSensorDriver(const FtSensorDriver&) = delete;
   FtSensorDriver& operator=(const FtSensorDriver&) = delete;
 
+  const char* kind() const noexcept override { return "ft"; }
   /// Starts monitoring (missing samples are counted from here) and SYNC production.
-  void start(TimeNs now) noexcept;
+  void start(TimeNs now) noexcept override;
+  bool ready() const noexcept override;
   /// Tare (true) or clear the tare (false) of sensor i at the next transmit().
   bool request_tare(std::size_t sensor, bool tare, TimeNs now) noexcept;
 
-  const FaultReport& update(TimeNs now) noexcept;
-  std::size_t transmit(TimeNs now) noexcept;
+  const FaultReport& update(TimeNs now) noexcept override;
+  std::size_t transmit(TimeNs now) noexcept override;
 
   Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
-  std::size_t sensor_count() const noexcept { return sensors_.size(); }
+  std::size_t sensor_count() const noexcept override { return sensors_.size(); }
+  WrenchFeedback wrench(std::size_t sensor) const noexcept override;
   const FtSensorState& sensor(std::size_t i) const noexcept { return sensors_[i].state; }
   /// True while a tare command has not been confirmed by the status bit.
   bool tare_pending(std::size_t i) const noexcept { return sensors_[i].tare_wait; }
-  const FaultReport& faults() const noexcept { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+  const FaultReport& faults() const noexcept override { return routers_.report(); }
+  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Half {

@@ -9,6 +9,12 @@
 // is the master's reply address, so MIT motors need their own bus.
 //
 // Cycle: BusRouter::poll, update(now), set_command(), transmit(now). Real-time safe after create().
+//
+// As a JointDevice (device.hpp) joint i is motor i, JointMode::Impedance: set_joint packs
+// (position, velocity, stiffness -> kp, damping -> kd, torque -> t), a negative stiffness or
+// damping taking the motor's configured default_kp / default_kd. request_quick_stop() holds every
+// motor that is On with damping only (kp = 0, kd = quick_stop_kd, t = 0, v = 0) and ignores
+// setpoints until the next request_enable() or request_disable().
 #pragma once
 
 #include <array>
@@ -21,6 +27,7 @@
 
 #include "mrqp/drivers/bus_budget.hpp"
 #include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/router_attachment.hpp"
 #include "mrqp/drivers/setpoint.hpp"
@@ -35,6 +42,9 @@ struct MitMotorConfig {
   mrqp_fw_mit_ranges ranges = MRQP_FW_MIT_RANGES_DEFAULT_INIT;
   float position_min = -std::numeric_limits<float>::infinity();  ///< rad: setpoints clamped, feedback flagged
   float position_max = std::numeric_limits<float>::infinity();
+  float default_kp = 0.0f;    ///< N m/rad: JointCommand::stiffness < 0
+  float default_kd = 0.0f;    ///< N m s/rad: JointCommand::damping < 0
+  float quick_stop_kd = 0.0f; ///< N m s/rad: the damping of request_quick_stop()
 };
 
 struct MitHandConfig {
@@ -57,20 +67,33 @@ struct MitMotorState {
   TimeNs timestamp = 0;
 };
 
-class MitHandDriver final : public FrameHandler {
+class MitHandDriver final : public JointDevice, public FrameHandler {
  public:
   static std::unique_ptr<MitHandDriver> create(const std::vector<BusRouter*>& buses, const MitHandConfig& config,
                                                std::string* error);
   MitHandDriver(const MitHandDriver&) = delete;
   MitHandDriver& operator=(const MitHandDriver&) = delete;
 
-  void request_enable(TimeNs now) noexcept;
-  void request_disable(TimeNs now) noexcept;
+  const char* kind() const noexcept override { return "mit_hand"; }
+  /// Nothing to boot: motors are polled from the first transmit().
+  void start(TimeNs) noexcept override {}
+  bool ready() const noexcept override { return all_on(); }
+  void request_enable(TimeNs now) noexcept override;
+  void request_disable(TimeNs now) noexcept override;
+  /// Holds every motor with damping only (see above).
+  void request_quick_stop(TimeNs now) noexcept override;
 
-  const FaultReport& update(TimeNs now) noexcept;
+  const FaultReport& update(TimeNs now) noexcept override;
   /// Impedance command for the next transmit() (used while the motor is On).
   SetpointResult set_command(std::size_t motor, const mrqp_fw_mit_cmd& cmd) noexcept;
-  std::size_t transmit(TimeNs now) noexcept;
+  std::size_t transmit(TimeNs now) noexcept override;
+
+  // JointDevice: joint i is motor i.
+  std::size_t joint_count() const noexcept override { return motors_.size(); }
+  JointMode joint_mode(std::size_t) const noexcept override { return JointMode::Impedance; }
+  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  JointFeedback joint(std::size_t joint) const noexcept override;
+  bool quick_stopped() const noexcept { return quick_stop_; }
 
   Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
@@ -78,8 +101,8 @@ class MitHandDriver final : public FrameHandler {
   bool all_off() const noexcept;
   std::size_t motor_count() const noexcept { return motors_.size(); }
   const MitMotorState& motor(std::size_t i) const noexcept { return motors_[i].state; }
-  const FaultReport& faults() const noexcept { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const;
+  const FaultReport& faults() const noexcept override { return routers_.report(); }
+  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Motor {
@@ -100,6 +123,7 @@ class MitHandDriver final : public FrameHandler {
   MitHandDriver() = default;
 
   MitHandConfig config_;
+  bool quick_stop_ = false;
   std::vector<Motor> motors_;
   std::vector<BusSlot> buses_;
   RouterAttachment routers_;
