@@ -44,7 +44,7 @@ function(mrqp_generate_model name)
     VERBATIM)
   add_library(${name} STATIC "${out}/${name}.cpp" "${out}/${name}.hpp")
   target_include_directories(${name} PUBLIC "$<BUILD_INTERFACE:${out}>")
-  target_link_libraries(${name} PUBLIC Eigen3::Eigen)
+  target_link_libraries(${name} PUBLIC mrqp_dep::eigen)
   target_compile_features(${name} PUBLIC cxx_std_17)
   if(TARGET mrqp_host_gen)  # cross/static build: the nested host generator is rebuilt first
     add_dependencies(${name} mrqp_host_gen)
