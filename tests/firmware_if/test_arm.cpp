@@ -27,7 +27,7 @@ TEST_CASE("default PDO mapping entries fill the PDO lengths exactly", "[firmware
   CHECK(e[0] == 0x606C0020u);
   CHECK(e[1] == 0x603F0010u);
   CHECK(e[2] == 0x60610008u);
-  CHECK(mrqp_fw_arm_pdo_mapping(static_cast<mrqp_fw_arm_pdo>(7), e) == 0);
+  CHECK(mrqp_fw_arm_pdo_mapping(out_of_range_enum<mrqp_fw_arm_pdo>(7), e) == 0);
 
   const struct {
     mrqp_fw_arm_pdo pdo;

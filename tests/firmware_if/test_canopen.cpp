@@ -149,7 +149,7 @@ TEST_CASE("heartbeat and boot-up frames", "[firmware_if][nmt]")
   }
   CHECK(mrqp_fw_heartbeat_pack(0, MRQP_FW_NMT_STATE_OPERATIONAL, &f) == MRQP_FW_PACK_ERR_ARG);
   CHECK(is_cleared(f));
-  CHECK(mrqp_fw_heartbeat_pack(1, static_cast<mrqp_fw_nmt_state>(0x85), &f) == MRQP_FW_PACK_ERR_ARG);
+  CHECK(mrqp_fw_heartbeat_pack(1, out_of_range_enum<mrqp_fw_nmt_state>(0x85), &f) == MRQP_FW_PACK_ERR_ARG);
 
   std::uint8_t node = 0;
   mrqp_fw_nmt_state st{};

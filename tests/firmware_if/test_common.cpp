@@ -260,7 +260,7 @@ TEST_CASE("every error code has a name", "[firmware_if][status]")
     CHECK_FALSE(s.empty());
     CHECK(s != "unknown error code");
   }
-  CHECK(std::string(mrqp_fw_err_str(static_cast<mrqp_fw_err>(99))) == "unknown error code");
+  CHECK(std::string(mrqp_fw_err_str(out_of_range_enum<mrqp_fw_err>(99))) == "unknown error code");
   CHECK(mrqp_fw_pack_failed(MRQP_FW_PACK_ERR_NAN));
   CHECK_FALSE(mrqp_fw_pack_failed(0x0000FFFFu));
 }

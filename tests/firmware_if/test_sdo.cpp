@@ -153,8 +153,8 @@ TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware
   CHECK(m.abort_code == MRQP_FW_SDO_ABORT_NO_OBJECT);
 
   // Block transfer and cs 7 are not supported.
-  for (std::uint8_t cs : {5, 6, 7}) {
-    f = make_frame(0x603, {static_cast<std::uint8_t>(cs << 5), 0, 0, 0, 0, 0, 0, 0});
+  for (unsigned cs : {5u, 6u, 7u}) {
+    f = make_frame(0x603, {static_cast<std::uint8_t>(cs << 5u), 0, 0, 0, 0, 0, 0, 0});
     CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_COMMAND);
     f.id = 0x583;
     CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_COMMAND);

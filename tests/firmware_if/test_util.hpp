@@ -68,6 +68,15 @@ inline void refresh_crc(mrqp_fw_frame& f)
   f.data[f.len - 1] = static_cast<std::uint8_t>(crc & 0xFFu);
 }
 
+// An enumeration value outside the enumerators (what a corrupt caller or frame could hand over),
+// made at run time so that the conversion is not a constant the compiler rejects.
+template <class Enum>
+inline Enum out_of_range_enum(int value)
+{
+  volatile int v = value;
+  return static_cast<Enum>(static_cast<int>(v));
+}
+
 inline float nanf() { return std::numeric_limits<float>::quiet_NaN(); }
 inline double nand() { return std::numeric_limits<double>::quiet_NaN(); }
 inline float inff() { return std::numeric_limits<float>::infinity(); }

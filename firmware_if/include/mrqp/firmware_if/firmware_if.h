@@ -21,5 +21,6 @@
 #include "mrqp/firmware_if/mit_frame.h"
 #include "mrqp/firmware_if/hand_fd_frame.h"
 #include "mrqp/firmware_if/ft_sensor.h"
+#include "mrqp/firmware_if/imu.h"
 
 #endif /* MRQP_FIRMWARE_IF_FIRMWARE_IF_H */
