@@ -6,6 +6,7 @@
 
 #include "mrqp/firmware_if/frame.h"
 #include "mrqp/firmware_if/hand_fd_frame.h"
+#include "mrqp/firmware_if/imu.h"
 
 namespace mrqp::drivers {
 
@@ -189,6 +190,13 @@ void BusBudget::add_ft_fd(std::uint32_t n)
 {
   if (n > 0u) {
     add_cyclic("F/T FD frame", n, 32, FrameFormat::FdBrs);
+  }
+}
+
+void BusBudget::add_imu_fd(std::uint32_t n)
+{
+  if (n > 0u) {
+    add_cyclic("IMU FD frame", n, MRQP_FW_IMU_FD_LEN, FrameFormat::FdBrs);
   }
 }
 

@@ -1,4 +1,4 @@
-// Fake hand actuators, hand controller board and force/torque sensor for the driver tests,
+// Fake hand actuators, hand controller board, force/torque sensor and IMU for the driver tests,
 // built from the firmware_if frames, attached to SimNodes as their firmware. Allocation-free.
 #pragma once
 
@@ -298,6 +298,45 @@ class FakeFtSensor final : public mrqp::drivers::SimListener {
   unsigned drop_moments_ = 0;
   unsigned syncs_ = 0;
   bool tared_ = false;
+  bool silent_ = false;
+};
+
+/// An IMU: on SYNC sends one FD sample frame (firmware_if/imu.h) of the values set here.
+class FakeImu final : public mrqp::drivers::SimListener {
+ public:
+  FakeImu(SimNode& node, unsigned node_id, TimeNs response_delay = 15000)
+      : node_(node), id_(node_id), delay_(response_delay)
+  {
+    node_.set_listener(this);
+    sample_.orientation[0] = 1.0;
+  }
+  mrqp_fw_imu_sample& sample() noexcept { return sample_; }
+  void set_silent(bool s) noexcept { silent_ = s; }
+  void skip_seq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
+  unsigned syncs() const noexcept { return syncs_; }
+
+  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override
+  {
+    if (kind != ReceiveResult::Frame || rx.frame.id != MRQP_FW_COB_SYNC || silent_) {
+      return;
+    }
+    ++syncs_;
+    mrqp_fw_imu_sample s = sample_;
+    s.seq = ++seq_;
+    mrqp_fw_frame out;
+    if (!mrqp_fw_pack_failed(mrqp_fw_imu_pack(&scale_, id_, &s, &out))) {
+      (void)node_.send_at(out, rx.timestamp + delay_);
+    }
+  }
+
+ private:
+  SimNode& node_;
+  unsigned id_;
+  TimeNs delay_;
+  mrqp_fw_imu_scale scale_ = MRQP_FW_IMU_SCALE_DEFAULT_INIT;
+  mrqp_fw_imu_sample sample_{};
+  std::uint8_t seq_ = 0;
+  unsigned syncs_ = 0;
   bool silent_ = false;
 };
 

@@ -178,6 +178,14 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   hb.board = 0;
   hb.joints = 20;
   bc.boards.push_back(hb);
+  // ... and an IMU (24-byte FD frames) sampling on this driver's SYNC.
+  drvtest::FakeImu imu_fake(*fd_bus.add_node(fdn), 0x40);
+  imu_fake.sample().angular_velocity[2] = 0.5;
+  ImuConfig ic;
+  ic.produce_sync = true;
+  ImuSensorConfig is;
+  is.node = 0x40;
+  ic.imus.push_back(is);
   BusRouter fd_router(*fd_master);
 
   FtConfig fc;
@@ -194,6 +202,8 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   REQUIRE(mit != nullptr);
   auto hand = FdHandDriver::create({&fd_router}, bc, &err);
   REQUIRE(hand != nullptr);
+  auto imu = ImuDriver::create({&fd_router}, ic, &err);
+  REQUIRE(imu != nullptr);
 
   // The start-up checks (allocate, outside the cycle).
   BusBudget budget(BusSpec{"arm", 1000000, 0, 250.0, 0.8});
@@ -210,6 +220,7 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   TimeNs t = 0;
   bool ft_started = false;
   arm->start(t);
+  imu->start(t);
   for (int k = 0; k < kCycles; ++k, t += period) {
     const long before = g_count.load(std::memory_order_relaxed);
 
@@ -223,7 +234,8 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
     const FaultReport& rf = ft->update(t);
     const FaultReport& rm = mit->update(t);
     const FaultReport& rh = hand->update(t);
-    const std::uint32_t flags = ra.flags | rf.flags | rm.flags | rh.flags;
+    const FaultReport& ri = imu->update(t);
+    const std::uint32_t flags = ra.flags | rf.flags | rm.flags | rh.flags | ri.flags;
     all_flags |= flags;
     cycles_with_faults += flags != 0u ? 1u : 0u;
 
@@ -262,6 +274,7 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
       }
     }
     sink += ft->sensor(0).wrench[2];
+    sink += static_cast<const ImuDevice&>(*imu).imu(0).angular_velocity[2];
     if (k == 5000) {
       arm->request_disable(t);  // and back: the whole state machine runs inside the window
     }
@@ -273,6 +286,7 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
     ft->transmit(t);
     mit->transmit(t);
     hand->transmit(t);
+    imu->transmit(t);
 
     allocations += g_count.load(std::memory_order_relaxed) - before;
   }
@@ -282,6 +296,8 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   CHECK(arm->all_enabled());
   CHECK(mit->all_on());
   CHECK(hand->all_enabled());
+  CHECK(imu->ready());
+  CHECK(imu->state(0).angular_velocity[2] == Approx(0.5));
   CHECK(!ft->tare_pending(0));
   CHECK(arm->faults().devices[3].refused_setpoints == 10u);
   CHECK((all_flags & ~fault::kSetpointRefused) == 0u);

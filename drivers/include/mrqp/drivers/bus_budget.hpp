@@ -81,6 +81,7 @@ class BusBudget {
   void add_hand_board(std::uint32_t joints);            ///< FD command + feedback frames (BRS)
   void add_ft_classic(std::uint32_t n);                 ///< forces 8 + moments 8 each
   void add_ft_fd(std::uint32_t n);                      ///< one 32-byte FD frame (BRS) each
+  void add_imu_fd(std::uint32_t n);                     ///< one 24-byte FD frame (BRS) each
 
   const BusSpec& spec() const noexcept { return spec_; }
   const std::vector<BudgetLine>& lines() const noexcept { return lines_; }
