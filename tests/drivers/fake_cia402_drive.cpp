@@ -6,9 +6,9 @@ namespace drvtest {
 using mrqp::drivers::ReceiveResult;
 
 namespace {
-mrqp::drivers::EmulatedCia402Drive::Options drive_options(const FakeDriveOptions& o) noexcept
+mrqp::emulation::EmulatedCia402Drive::Options drive_options(const FakeDriveOptions& o) noexcept
 {
-  mrqp::drivers::EmulatedCia402Drive::Options d;
+  mrqp::emulation::EmulatedCia402Drive::Options d;
   d.node = o.node;
   d.boot_delay = o.boot_delay;
   d.response_delay = o.response_delay;

@@ -6,7 +6,7 @@
 // SYNC. Allocation-free after construction.
 #pragma once
 
-#include <mrqp/drivers/emulated_cia402_drive.hpp>
+#include <mrqp/emulation/emulated_cia402_drive.hpp>
 #include <mrqp/drivers/sim_bus.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
 
@@ -26,7 +26,7 @@ struct FakeDriveOptions {
   mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
 };
 
-class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::drivers::EmulatedCia402Drive::Host {
+class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::emulation::EmulatedCia402Drive::Host {
  public:
   FakeCia402Drive(SimNode& node, const FakeDriveOptions& options);
 
@@ -41,6 +41,9 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::d
   void inject_fault(std::uint16_t code, std::uint8_t error_register) noexcept;
   /// Stop sending TPDOs (heartbeat continues).
   void set_pdo_silent(bool silent) noexcept { drive_.set_pdo_silent(silent); }
+  /// No frame at all / the next n TPDOs one byte short (the emulated drive's fault switches).
+  void set_silent(bool silent) noexcept { drive_.set_silent(silent); }
+  void corrupt_pdos(unsigned n) noexcept { drive_.corrupt_pdos(n); }
   /// Answer SDO writes to index:sub with an abort.
   void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept
   {
@@ -67,7 +70,7 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::d
   bool rpdo1_configured() const noexcept { return drive_.rpdo1_configured(); }
 
  private:
-  using Drive = mrqp::drivers::EmulatedCia402Drive;
+  using Drive = mrqp::emulation::EmulatedCia402Drive;
   void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept override;
   void on_nmt_reset(bool application) noexcept override;
   Drive::Feedback on_sync(const Drive& drive, bool new_targets, TimeNs now) noexcept override;

@@ -7,7 +7,7 @@
 
 namespace mrqp::drive_emu {
 
-using mrqp::drivers::EmulatedCia402Drive;
+using mrqp::emulation::EmulatedCia402Drive;
 
 /// One node: the emulated drive and its joint.
 struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {

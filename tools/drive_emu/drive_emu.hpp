@@ -7,7 +7,7 @@
 // emulator to a SimNode (tests), main.cpp to SocketCAN.
 #pragma once
 
-#include <mrqp/drivers/emulated_cia402_drive.hpp>
+#include <mrqp/emulation/emulated_cia402_drive.hpp>
 #include <mrqp/drivers/time.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
 
@@ -20,7 +20,7 @@ namespace mrqp::drive_emu {
 
 using mrqp::drivers::TimeNs;
 
-constexpr TimeNs kNever = mrqp::drivers::EmulatedCia402Drive::kNever;
+constexpr TimeNs kNever = mrqp::emulation::EmulatedCia402Drive::kNever;
 
 struct JointModel {
   double inertia = 0.05;       ///< kg m^2, > 0

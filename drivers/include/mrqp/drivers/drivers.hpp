@@ -8,7 +8,6 @@
 #include "mrqp/drivers/bus_health.hpp"
 #include "mrqp/drivers/bus_router.hpp"
 #include "mrqp/drivers/device.hpp"
-#include "mrqp/drivers/emulated_cia402_drive.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/fd_hand_driver.hpp"
 #include "mrqp/drivers/ft_sensor_driver.hpp"

@@ -1,4 +1,4 @@
-// mrqp drivers -- the drive side of the CiA 402 arm protocol: one emulated drive's firmware.
+// mrqp emulation -- the drive side of the CiA 402 arm protocol: one emulated drive's firmware.
 //
 // One CANopen node built from the firmware_if drive-side state machines: NMT (reset node /
 // communication, start, stop, pre-operational) with the boot-up message and the heartbeat
@@ -11,7 +11,13 @@
 // It is transport-free: frames come in through on_frame(), time moves through advance(), and
 // frames go out through the Host, which also supplies the motion behind the state machine (what
 // the TPDOs report). The test fakes of tests/drivers put it on a SimNode, mrqp-drive-emu
-// (tools/drive_emu) runs one per node id with a physical joint model. No allocation.
+// (tools/drive_emu) runs one per node id with a physical joint model, the controller loop's plant
+// one per drive of a robot. No allocation. Part of mrqp_emulation, not of the runtime drivers.
+//
+// Fault switches (off by default; with all off the drive behaves exactly as before they existed):
+// stop_heartbeat_at(), set_pdo_silent() (no TPDOs: feedback missing), set_silent() (no frame at
+// all: no heartbeat, no SDO answer, no PDO, no EMCY), corrupt_pdos(n) (the next n TPDOs one byte
+// short), raise_fault() (EMCY and the CiA 402 Fault state).
 #pragma once
 
 #include <array>
@@ -24,7 +30,9 @@
 #include "mrqp/firmware_if/frame.h"
 #include "mrqp/firmware_if/nmt.h"
 
-namespace mrqp::drivers {
+namespace mrqp::emulation {
+
+using drivers::TimeNs;
 
 class EmulatedCia402Drive {
  public:
@@ -82,6 +90,10 @@ class EmulatedCia402Drive {
   void stop_heartbeat_at(TimeNs t) noexcept { heartbeat_stop_at_ = t; }
   /// No TPDOs (the heartbeat continues).
   void set_pdo_silent(bool silent) noexcept { pdo_silent_ = silent; }
+  /// No frame at all (the drive still receives and runs its state machines).
+  void set_silent(bool silent) noexcept { silent_ = silent; }
+  /// The next `n` TPDOs are sent one byte short (a corrupt frame to the master).
+  void corrupt_pdos(unsigned n) noexcept { corrupt_left_ = n; }
   /// Answer SDO writes to index:sub with this abort code.
   void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
   /// Report this mode in the TPDO2 mode display instead of 0x6060.
@@ -129,6 +141,7 @@ class EmulatedCia402Drive {
   void on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept;
   void on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept;
   void on_sync(TimeNs now) noexcept;
+  void send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept;
 
   Host& host_;
   Options options_;
@@ -148,6 +161,8 @@ class EmulatedCia402Drive {
   std::int16_t target_torque_ = 0;
   std::uint16_t error_code_ = 0;
   bool pdo_silent_ = false;
+  bool silent_ = false;
+  unsigned corrupt_left_ = 0;
   bool force_mode_ = false;
   std::int8_t forced_mode_ = 0;
   std::uint16_t abort_index_ = 0;
@@ -157,4 +172,4 @@ class EmulatedCia402Drive {
   unsigned syncs_ = 0;
 };
 
-}  // namespace mrqp::drivers
+}  // namespace mrqp::emulation

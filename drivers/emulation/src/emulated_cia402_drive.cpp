@@ -1,12 +1,12 @@
 // mrqp drivers -- the drive side of the CiA 402 arm protocol (see emulated_cia402_drive.hpp).
-#include "mrqp/drivers/emulated_cia402_drive.hpp"
+#include "mrqp/emulation/emulated_cia402_drive.hpp"
 
 #include "mrqp/firmware_if/canopen_ids.h"
 #include "mrqp/firmware_if/emcy.h"
 #include "mrqp/firmware_if/objects.h"
 #include "mrqp/firmware_if/sdo.h"
 
-namespace mrqp::drivers {
+namespace mrqp::emulation {
 
 namespace {
 constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
@@ -18,6 +18,18 @@ TimeNs ms(std::uint32_t v) noexcept
 }  // namespace
 
 void EmulatedCia402Drive::Host::on_nmt_reset(bool) noexcept {}
+
+void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept
+{
+  if (silent_) {
+    return;
+  }
+  if (pdo && corrupt_left_ > 0u) {
+    --corrupt_left_;
+    f.len = static_cast<std::uint8_t>(f.len - 1u);  // one byte short: the master's unpack rejects it
+  }
+  host_.emit(f, at);
+}
 
 EmulatedCia402Drive::EmulatedCia402Drive(Host& host, const Options& options) noexcept
     : host_(host), options_(options)
@@ -192,7 +204,7 @@ void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_reg
   e.error_register = error_register;
   mrqp_fw_frame f;
   if (!mrqp_fw_pack_failed(mrqp_fw_emcy_pack(options_.node, &e, &f))) {
-    host_.emit(f, now);
+    send(f, now, false);
   }
 }
 
@@ -203,7 +215,7 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept
     boot_at_ = kNever;
     mrqp_fw_frame f;
     (void)mrqp_fw_heartbeat_pack(options_.node, MRQP_FW_NMT_STATE_BOOTUP, &f);
-    host_.emit(f, now);
+    send(f, now, false);
     nmt_ = mrqp_fw_nmt_boot_complete(nmt_);
     state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_INIT_COMPLETE, nullptr);
     const std::uint32_t period = od_value(0x1017, 0);
@@ -217,7 +229,7 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept
     }
     mrqp_fw_frame f;
     (void)mrqp_fw_heartbeat_pack(options_.node, nmt_, &f);
-    host_.emit(f, now);
+    send(f, now, false);
     heartbeat_due_ += ms(period);
     if (heartbeat_due_ <= now) {
       heartbeat_due_ = now + ms(period);
@@ -338,7 +350,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept
   mrqp_fw_frame out;
   if (mrqp_fw_sdo_unpack(&f, &m) != MRQP_FW_OK) {
     (void)mrqp_fw_sdo_pack_abort(options_.node, 1, 0, 0, MRQP_FW_SDO_ABORT_COMMAND, &out);
-    host_.emit(out, at);
+    send(out, at, false);
     return;
   }
   std::uint32_t abort = 0;
@@ -386,7 +398,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept
   if (abort != 0u) {
     (void)mrqp_fw_sdo_pack_abort(options_.node, 1, m.index, m.subindex, abort, &out);
   }
-  host_.emit(out, at);
+  send(out, at, false);
 }
 
 void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
@@ -408,7 +420,7 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
       mrqp_fw_emcy e{};
       mrqp_fw_frame f;
       (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset
-      host_.emit(f, at);
+      send(f, at, false);
     }
   }
   const Feedback fb = host_.on_sync(*this, new_targets, now);
@@ -419,13 +431,13 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
   if (tpdo1_configured()) {
     const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, MRQP_FW_SW_VOLTAGE_ENABLED), fb.position, fb.torque};
     (void)mrqp_fw_arm_pack_tpdo1(options_.node, &t, &f);
-    host_.emit(f, at);
+    send(f, at, true);
   }
   if (tpdo2_configured()) {
     const mrqp_fw_arm_tpdo2 t{fb.velocity, error_code_, force_mode_ ? forced_mode_ : mode()};
     (void)mrqp_fw_arm_pack_tpdo2(options_.node, &t, &f);
-    host_.emit(f, at);
+    send(f, at, true);
   }
 }
 
-}  // namespace mrqp::drivers
+}  // namespace mrqp::emulation

@@ -1,0 +1,88 @@
+// mrqp emulation -- one hand controller board's firmware on CAN FD (firmware_if/hand_fd_frame.h),
+// transport-free.
+//
+// Each valid command frame (0x120 + board) sets the mode and, for its joints, the servo: POSITION
+// -> the board's PD (kp, kd of the options) on position / velocity plus the feed-forward torque,
+// TORQUE -> torque only, HOLD -> the PD on the position measured when HOLD began, DISABLED -> no
+// servo. It is answered after the response delay by one feedback frame (0x140 + board) of the
+// same joints: the command's sequence echoed, the feedback counter + 1, mode, status, and the
+// joints as the host measures them. A command that fails its CRC is dropped and sets the status
+// bit CRC_ERROR_SEEN. With a command timeout, no valid command for that long drops an enabled
+// board into HOLD with COMMAND_TIMEOUT set (cleared by the next command).
+//
+// Fault switches: set_silent() (no feedback), corrupt_feedback(n) (the next n feedback frames with
+// a flipped bit: CRC error at the master), set_stale() (joints no longer read from the host and
+// the counter stands still: the master sees a counter gap), raise_fault() (status FAULT, servo
+// off, commanded modes ignored until a DISABLED command clears it). No allocation.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "mrqp/emulation/joint_host.hpp"
+#include "mrqp/firmware_if/hand_fd_frame.h"
+
+namespace mrqp::emulation {
+
+class EmulatedHandBoard {
+ public:
+  static constexpr TimeNs kNever = INT64_MAX;
+
+  struct Options {
+    std::uint8_t board = 0;      ///< 0..15
+    std::uint8_t joints = 20;    ///< 1..32
+    std::size_t joint = 0;       ///< the host's index of joint 0 of this board
+    mrqp_fw_hand_scale scale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
+    double kp = 5.0;             ///< N m/rad: the board's position gain
+    double kd = 0.05;            ///< N m s/rad
+    TimeNs response_delay = 20000;
+    TimeNs command_timeout = 0;  ///< 0: none
+  };
+
+  EmulatedHandBoard(JointHost& host, const Options& options) noexcept;
+  EmulatedHandBoard(const EmulatedHandBoard&) = delete;
+  EmulatedHandBoard& operator=(const EmulatedHandBoard&) = delete;
+
+  /// A frame on the bus at `now`; true if it was a command to this board.
+  bool on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  /// The command timeout, when due at or before `now`.
+  void advance(TimeNs now) noexcept;
+  TimeNs next_event() const noexcept;
+
+  // ---- power and fault injection ----
+  void power_on(TimeNs now) noexcept;
+  void set_silent(bool silent) noexcept { silent_ = silent; }
+  void corrupt_feedback(unsigned n) noexcept { corrupt_left_ = n; }
+  void set_stale(bool stale) noexcept { stale_ = stale; }
+  void raise_fault(TimeNs now) noexcept;
+
+  // ---- observation ----
+  std::uint8_t mode() const noexcept { return mode_; }
+  std::uint8_t status() const noexcept;
+  const ServoCommand& servo(std::size_t joint) const noexcept { return servo_[joint]; }
+  unsigned commands() const noexcept { return commands_; }
+
+ private:
+  void set_mode(std::uint8_t mode, TimeNs now) noexcept;
+  void servo_off(TimeNs now) noexcept;
+
+  JointHost& host_;
+  Options options_;
+  std::array<ServoCommand, MRQP_FW_HAND_MAX_JOINTS> servo_{};
+  std::array<mrqp_fw_hand_joint, MRQP_FW_HAND_MAX_JOINTS> measured_{};
+  std::uint16_t seq_echo_ = 0;
+  std::uint8_t counter_ = 0;
+  std::uint8_t mode_ = MRQP_FW_HAND_MODE_DISABLED;
+  bool crc_error_seen_ = false;
+  bool timed_out_ = false;
+  bool faulted_ = false;
+  bool silent_ = false;
+  bool stale_ = false;
+  bool have_measured_ = false;
+  unsigned corrupt_left_ = 0;
+  unsigned commands_ = 0;
+  TimeNs last_command_ = 0;
+};
+
+}  // namespace mrqp::emulation
