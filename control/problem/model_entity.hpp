@@ -20,22 +20,24 @@ class ModelEntity final : public Entity {
     Model::neutral(q0);
     q_ = q0;
     for (int k = Model::floating_base ? 6 : 0; k < Model::nv; ++k) {
-      const int iq = Model::floating_base ? k + 1 : k;
+      const auto iq = static_cast<std::size_t>(Model::floating_base ? k + 1 : k);
+      const auto iv = static_cast<std::size_t>(k);
       q_lower_(k) = Model::qLower()[iq];
       q_upper_(k) = Model::qUpper()[iq];
-      v_limit_(k) = Model::vLimit()[k];
-      effort_limit_(k) = Model::effortLimit()[k];
+      v_limit_(k) = Model::vLimit()[iv];
+      effort_limit_(k) = Model::effortLimit()[iv];
     }
     mass_ = Model::totalMass();
     // Body masses and CoM positions (body frame) for the CoM bias acceleration.
     typename Model::ParamVector phi;
     Model::params(phi);
     for (int b = 0; b < Model::nbodies; ++b) {
-      body_frame_[b] = Model::frameIndex(Model::bodyNames()[b]);
-      body_mass_[b] = phi(10 * b);
-      body_com_[b] = body_mass_[b] > 0.0 ? Eigen::Vector3d(phi.template segment<3>(10 * b + 1) /
-                                                           body_mass_[b])
-                                         : Eigen::Vector3d::Zero();
+      const auto ib = static_cast<std::size_t>(b);
+      body_frame_[ib] = Model::frameIndex(Model::bodyNames()[ib]);
+      body_mass_[ib] = phi(10 * b);
+      body_com_[ib] = body_mass_[ib] > 0.0 ? Eigen::Vector3d(phi.template segment<3>(10 * b + 1) /
+                                                             body_mass_[ib])
+                                           : Eigen::Vector3d::Zero();
     }
     // Passive where the model says the joint has no effort (a door hinge), actuated otherwise.
     for (int k = Model::floating_base ? 6 : 0; k < Model::nv; ++k) {
@@ -45,13 +47,13 @@ class ModelEntity final : public Entity {
 
   int frameCount() const noexcept override { return Model::nframes; }
   const char* frameName(int f) const noexcept override {
-    return f >= 0 && f < Model::nframes ? Model::frameNames()[f] : "";
+    return f >= 0 && f < Model::nframes ? Model::frameNames()[static_cast<std::size_t>(f)] : "";
   }
   int frameIndex(const std::string& n) const noexcept override {
     return Model::frameIndex(n.c_str());
   }
   const char* jointName(int j) const noexcept override {
-    return j >= 0 && j < nv_ - jointOffset() ? Model::jointNames()[j] : "";
+    return j >= 0 && j < nv_ - jointOffset() ? Model::jointNames()[static_cast<std::size_t>(j)] : "";
   }
   void neutral(Eigen::Ref<Eigen::VectorXd> q) const noexcept override {
     typename Model::ConfigVector q0;
@@ -108,7 +110,7 @@ class ModelEntity final : public Entity {
     const Eigen::Vector3d c = Model::com(d_);
     Eigen::Vector3d cb = Eigen::Vector3d::Zero();
     if (mass_ > 0.0) {
-      for (int b = 0; b < Model::nbodies; ++b) {
+      for (std::size_t b = 0; b < static_cast<std::size_t>(Model::nbodies); ++b) {
         if (body_mass_[b] > 0.0 && body_frame_[b] >= 0) {
           cb += body_mass_[b] * Model::bias(d_, body_frame_[b], body_com_[b], true).template tail<3>();
         }

@@ -1,10 +1,14 @@
 #include "problem/multi_robot_problem.hpp"
 
+#include "problem/constraints/com_damper.hpp"
+#include "problem/constraints/joint_inequality.hpp"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <stdexcept>
 
 namespace mrqp::problem {
@@ -19,24 +23,7 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) noexcept {
   return aa.angle() * aa.axis();
 }
 
-template <class Slots>
-int countUsed(const Slots& slots) noexcept {
-  int n = 0;
-  for (const auto& s : slots) n += s.used ? 1 : 0;
-  return n;
-}
-
 }  // namespace
-
-int taskDimension(TaskType t) noexcept {
-  switch (t) {
-    case TaskType::FramePose: return 6;
-    case TaskType::JointTarget: return 1;
-    case TaskType::Posture:
-    case TaskType::ForceMinimisation: return 0;  // variable
-    default: return 3;
-  }
-}
 
 MultiRobotProblem::MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entities,
                                      const ProblemSettings& settings)
@@ -53,21 +40,27 @@ MultiRobotProblem::MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entiti
     max_nv_ = std::max(max_nv_, e->nv());
   }
   contacts_.resize(static_cast<std::size_t>(settings_.max_contacts));
-  tasks_.resize(static_cast<std::size_t>(settings_.max_tasks));
-  for (auto& t : tasks_) t.posture = Eigen::VectorXd::Zero(max_nv_);
-  dampers_.resize(static_cast<std::size_t>(settings_.max_com_dampers));
-  joint_ineqs_.resize(static_cast<std::size_t>(settings_.max_joint_inequalities));
+  tasks_.resize(static_cast<std::size_t>(std::max(0, settings_.max_tasks)));
+  const int constraint_slots = settings_.max_constraints >= 0
+                                   ? settings_.max_constraints
+                                   : settings_.max_com_dampers + settings_.max_joint_inequalities;
+  constraints_.resize(static_cast<std::size_t>(std::max(0, constraint_slots)));
+  max_constraint_rows_ = settings_.max_constraint_rows >= 0
+                             ? settings_.max_constraint_rows
+                             : 16 * settings_.max_com_dampers + settings_.max_joint_inequalities;
+  max_constraint_equalities_ = std::max(0, settings_.max_constraint_equalities);
   const int n_max = nv_total_ + settings_.max_contact_generators;
-  const int me_max = nv_total_ + 6 * settings_.max_contacts;
-  const int mi_max = nv_total_ + kDamperRows * settings_.max_com_dampers + settings_.max_joint_inequalities;
+  const int me_max = nv_total_ + 6 * settings_.max_contacts + max_constraint_equalities_;
+  const int mi_max = nv_total_ + max_constraint_rows_;
   qp_ = qp::QpProblem(n_max, me_max, mi_max);
   solver_ = qp::QpSolver(n_max, me_max, mi_max, settings_.qp);
   E_ = Eigen::MatrixXd::Zero(nv_total_, n_max);
   Nall_ = Eigen::VectorXd::Zero(nv_total_);
   Ja_ = Eigen::MatrixXd::Zero(6, max_nv_);
   Jb_ = Eigen::MatrixXd::Zero(6, max_nv_);
+  Jw_ = Eigen::MatrixXd::Zero(6, max_nv_);
   T_ = Eigen::MatrixXd::Zero(6, n_max);
-  t_.setZero();
+  t_ = Eigen::VectorXd::Zero(std::max({6, max_nv_, settings_.max_contact_generators}));
   x_ = Eigen::VectorXd::Zero(n_max);
   tau_ = Eigen::VectorXd::Zero(nv_total_);
   for (auto& e : entities_) {
@@ -145,161 +138,196 @@ void MultiRobotProblem::establish(ContactSlot& c) noexcept {
   c.established = true;
 }
 
-// ---------------------------------------------------------------- tasks
+// ---------------------------------------------------------------- tasks and constraints
 
-int MultiRobotProblem::addTask(const TaskDesc& t) noexcept {
-  const bool force = t.type == TaskType::ContactForce || t.type == TaskType::ForceMinimisation;
-  const bool group = t.type == TaskType::Com && t.entity < 0;
-  if (!(t.weight >= 0.0) || !(t.stiffness >= 0.0) || !std::isfinite(t.weight) ||
-      !std::isfinite(t.stiffness) || !std::isfinite(t.damping)) {
-    error_ = "a task's weight and gains must be finite and ≥ 0";
+namespace {
+
+/// The slot for a new object: one holding none, else one holding a removed object (which the
+/// caller replaces). −1 when every slot is active.
+template <class Slots, class Held>
+int freeSlot(const Slots& slots, Held held) noexcept {
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (!held(slots[i])) return static_cast<int>(i);
+  }
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (!slots[i].active) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+}  // namespace
+
+int MultiRobotProblem::addTask(std::unique_ptr<Task> t) noexcept {
+  if (!t) {
+    error_ = "no task given";
     return -1;
   }
-  if (force) {
-    if (t.type == TaskType::ContactForce && !contactActive(t.contact)) {
-      error_ = "a force task needs an existing contact";
-      return -1;
-    }
-  } else if (group) {
-    if (t.entity_mask == 0 || (entityCount() < 32 && (t.entity_mask >> entityCount()) != 0)) {
-      error_ = "a group CoM task needs a non-empty set of existing entities";
-      return -1;
-    }
-  } else {
-    if (t.entity < 0 || t.entity >= entityCount()) {
-      error_ = "a task names an entity that does not exist";
-      return -1;
-    }
-    const Entity& e = entity(t.entity);
-    const bool frame_task = t.type == TaskType::FramePosition || t.type == TaskType::FrameOrientation ||
-                            t.type == TaskType::FramePose;
-    if (frame_task && (t.frame < 0 || t.frame >= e.frameCount())) {
-      error_ = "a frame task names a frame that does not exist";
-      return -1;
-    }
-    if (t.type == TaskType::JointTarget && (t.joint < e.jointOffset() || t.joint >= e.nv())) {
-      error_ = "a joint task names a joint that does not exist";
-      return -1;
-    }
+  if (const char* why = t->check(*this)) {
+    error_ = why;
+    return -1;
   }
-  for (std::size_t i = 0; i < tasks_.size(); ++i) {
-    TaskSlot& s = tasks_[i];
-    if (s.used) continue;
-    s.d = t;
-    s.used = true;
-    s.error.setZero();
-    if (t.type == TaskType::Posture) {
-      const Entity& e = entity(t.entity);
-      for (int k = e.jointOffset(); k < e.nv(); ++k) s.posture(k) = e.q()(e.qIndexOfV(k));
-    }
-    return static_cast<int>(i);
+  const int i = freeSlot(tasks_, [](const TaskSlot& s) { return s.task != nullptr; });
+  if (i < 0) {
+    error_ = "no free task slot (max_tasks)";
+    return -1;
   }
-  error_ = "no free task slot (max_tasks)";
-  return -1;
+  TaskSlot& s = tasks_[static_cast<std::size_t>(i)];
+  s.task = std::move(t);
+  s.active = true;
+  s.task->attach(*this);
+  return i;
 }
 
 bool MultiRobotProblem::removeTask(int id) noexcept {
   if (!taskActive(id)) return false;
-  tasks_[static_cast<std::size_t>(id)].used = false;
+  tasks_[static_cast<std::size_t>(id)].active = false;
   return true;
+}
+
+bool MultiRobotProblem::restoreTask(int id) noexcept {
+  if (id < 0 || id >= taskCapacity() || !tasks_[static_cast<std::size_t>(id)].task) return false;
+  TaskSlot& s = tasks_[static_cast<std::size_t>(id)];
+  if (s.active) return true;
+  if (const char* why = s.task->check(*this)) {  // e.g. its contact was removed meanwhile
+    error_ = why;
+    return false;
+  }
+  s.active = true;
+  return true;
+}
+
+std::unique_ptr<Task> MultiRobotProblem::releaseTask(int id) noexcept {
+  if (id < 0 || id >= taskCapacity()) return nullptr;
+  tasks_[static_cast<std::size_t>(id)].active = false;
+  return std::move(tasks_[static_cast<std::size_t>(id)].task);
 }
 
 bool MultiRobotProblem::taskActive(int id) const noexcept {
-  return id >= 0 && id < taskCapacity() && tasks_[static_cast<std::size_t>(id)].used;
+  return id >= 0 && id < taskCapacity() && tasks_[static_cast<std::size_t>(id)].active;
 }
 
 bool MultiRobotProblem::setTaskWeight(int id, double w) noexcept {
-  if (!taskActive(id) || !(w >= 0.0) || !std::isfinite(w)) return false;
-  tasks_[static_cast<std::size_t>(id)].d.weight = w;
-  return true;
+  return taskActive(id) && task(id).setWeight(w);
 }
 
 bool MultiRobotProblem::setTaskGains(int id, double k, double d) noexcept {
-  if (!taskActive(id) || !(k >= 0.0) || !std::isfinite(k) || !std::isfinite(d)) return false;
-  tasks_[static_cast<std::size_t>(id)].d.stiffness = k;
-  tasks_[static_cast<std::size_t>(id)].d.damping = d;
-  return true;
+  return taskActive(id) && task(id).setGains(k, d);
 }
 
 bool MultiRobotProblem::setTaskTarget(int id, const Eigen::Vector3d& target) noexcept {
-  if (!taskActive(id) || !target.allFinite()) return false;
-  tasks_[static_cast<std::size_t>(id)].d.target = target;
-  return true;
+  return taskActive(id) && task(id).setTarget(target);
 }
 
 bool MultiRobotProblem::setTaskTargetRotation(int id, const Eigen::Matrix3d& R) noexcept {
-  if (!taskActive(id) || !R.allFinite()) return false;
-  tasks_[static_cast<std::size_t>(id)].d.target_rotation = R;
-  return true;
+  return taskActive(id) && task(id).setTargetRotation(R);
 }
 
 bool MultiRobotProblem::setPostureTarget(int id, const Eigen::Ref<const Eigen::VectorXd>& qj) noexcept {
-  if (!taskActive(id)) return false;
-  TaskSlot& s = tasks_[static_cast<std::size_t>(id)];
-  if (s.d.type != TaskType::Posture) return false;
-  const Entity& e = entity(s.d.entity);
-  if (qj.size() != e.nv() - e.jointOffset() || !qj.allFinite()) return false;
-  s.posture.segment(e.jointOffset(), qj.size()) = qj;
-  return true;
+  return taskActive(id) && task(id).setTargetVector(qj);
+}
+
+bool MultiRobotProblem::setTaskReference(int id, const Eigen::Ref<const Eigen::VectorXd>& velocity,
+                                         const Eigen::Ref<const Eigen::VectorXd>& acceleration) noexcept {
+  return taskActive(id) && task(id).setReference(velocity, acceleration);
+}
+
+bool MultiRobotProblem::setTaskReference(int id, const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
+                                         const Eigen::Vector3d& acceleration) noexcept {
+  if (!taskActive(id) || task(id).referenceRows() != 3 || !velocity.allFinite() || !acceleration.allFinite()) {
+    return false;
+  }
+  return task(id).setTarget(position) && task(id).setReference(velocity, acceleration);
 }
 
 Vector6d MultiRobotProblem::taskError(int id) const noexcept {
-  return taskActive(id) ? tasks_[static_cast<std::size_t>(id)].error : Vector6d::Zero();
+  return taskActive(id) ? task(id).error() : Vector6d::Zero();
 }
 
-double MultiRobotProblem::kd(const TaskDesc& t) const noexcept {
-  return t.damping >= 0.0 ? t.damping : 2.0 * std::sqrt(t.stiffness);
-}
-
-// ---------------------------------------------------------------- dampers
-
-int MultiRobotProblem::addComDamper(const ComDamperDesc& d) noexcept {
-  if (d.entity < 0 || d.entity >= entityCount() || !(d.interaction > d.security) ||
-      !(d.security >= 0.0) || !(d.damping > 0.0)) {
-    error_ = "a CoM damper needs an entity, interaction > security ≥ 0 and damping > 0";
+int MultiRobotProblem::addConstraint(std::unique_ptr<Constraint> c) noexcept {
+  if (!c) {
+    error_ = "no constraint given";
     return -1;
   }
-  for (std::size_t i = 0; i < dampers_.size(); ++i) {
-    if (dampers_[i].used) continue;
-    dampers_[i].d = d;
-    dampers_[i].used = true;
-    dampers_[i].polygon.clear();
-    return static_cast<int>(i);
+  if (const char* why = c->check(*this)) {
+    error_ = why;
+    return -1;
   }
-  error_ = "no free CoM damper slot (max_com_dampers)";
-  return -1;
+  int rows = c->inequalityRows(), eqs = c->equalityRows();
+  for (const auto& s : constraints_) {
+    if (s.active) {
+      rows += s.constraint->inequalityRows();
+      eqs += s.constraint->equalityRows();
+    }
+  }
+  if (rows > max_constraint_rows_ || eqs > max_constraint_equalities_) {
+    error_ = "the constraints' rows exceed max_constraint_rows or max_constraint_equalities";
+    return -1;
+  }
+  const int i = freeSlot(constraints_, [](const ConstraintSlot& s) { return s.constraint != nullptr; });
+  if (i < 0) {
+    error_ = "no free constraint slot (max_constraints)";
+    return -1;
+  }
+  ConstraintSlot& s = constraints_[static_cast<std::size_t>(i)];
+  s.constraint = std::move(c);
+  s.active = true;
+  return i;
 }
 
 int MultiRobotProblem::addJointInequality(const JointInequalityDesc& d) noexcept {
-  if (d.terms < 1 || d.terms > JointInequalityDesc::kMaxTerms || !(d.interaction > d.security) ||
-      !(d.damping > 0.0) || !std::isfinite(d.upper)) {
+  if (d.terms < 1 || d.terms > JointInequalityDesc::kMaxTerms) {
     error_ = "a joint inequality needs 1 to 4 terms, interaction > security and damping > 0";
     return -1;
   }
-  for (int k = 0; k < d.terms; ++k) {
-    const int e = d.entity[static_cast<std::size_t>(k)];
-    const int j = d.joint[static_cast<std::size_t>(k)];
-    if (e < 0 || e >= entityCount() || j < entity(e).jointOffset() || j >= entity(e).nv()) {
-      error_ = "a joint inequality names a joint that does not exist";
-      return -1;
-    }
+  std::array<JointInequality::Term, JointInequality::kMaxTerms> terms{};
+  for (std::size_t k = 0; k < static_cast<std::size_t>(d.terms); ++k) {
+    terms[k].entity = d.entity[k];
+    terms[k].joint = d.joint[k];
+    terms[k].coeff = d.coeff[k];
   }
-  for (std::size_t i = 0; i < joint_ineqs_.size(); ++i) {
-    if (joint_ineqs_[i].used) continue;
-    joint_ineqs_[i].d = d;
-    joint_ineqs_[i].used = true;
-    return static_cast<int>(i);
-  }
-  error_ = "no free joint inequality slot (max_joint_inequalities)";
-  return -1;
+  std::unique_ptr<Constraint> c(new (std::nothrow) JointInequality(terms.data(), d.terms, d.upper, d.interaction,
+                                                                     d.security, d.damping));
+  return addConstraint(std::move(c));
 }
 
-bool MultiRobotProblem::removeJointInequality(int id) noexcept {
-  if (id < 0 || id >= static_cast<int>(joint_ineqs_.size()) || !joint_ineqs_[static_cast<std::size_t>(id)].used) {
+int MultiRobotProblem::addComDamper(const ComDamperDesc& d) noexcept {
+  std::unique_ptr<Constraint> c(new (std::nothrow) ComDamper(d.entity, d.interaction, d.security, d.damping));
+  return addConstraint(std::move(c));
+}
+
+bool MultiRobotProblem::removeConstraint(int id) noexcept {
+  if (!constraintActive(id)) return false;
+  constraints_[static_cast<std::size_t>(id)].active = false;
+  return true;
+}
+
+bool MultiRobotProblem::restoreConstraint(int id) noexcept {
+  if (id < 0 || id >= constraintCapacity() || !constraints_[static_cast<std::size_t>(id)].constraint) return false;
+  ConstraintSlot& s = constraints_[static_cast<std::size_t>(id)];
+  if (s.active) return true;
+  int rows = s.constraint->inequalityRows(), eqs = s.constraint->equalityRows();
+  for (const auto& o : constraints_) {
+    if (o.active) {
+      rows += o.constraint->inequalityRows();
+      eqs += o.constraint->equalityRows();
+    }
+  }
+  if (rows > max_constraint_rows_ || eqs > max_constraint_equalities_) {
+    error_ = "the constraints' rows exceed max_constraint_rows or max_constraint_equalities";
     return false;
   }
-  joint_ineqs_[static_cast<std::size_t>(id)].used = false;
+  s.active = true;
   return true;
+}
+
+std::unique_ptr<Constraint> MultiRobotProblem::releaseConstraint(int id) noexcept {
+  if (id < 0 || id >= constraintCapacity()) return nullptr;
+  constraints_[static_cast<std::size_t>(id)].active = false;
+  return std::move(constraints_[static_cast<std::size_t>(id)].constraint);
+}
+
+bool MultiRobotProblem::constraintActive(int id) const noexcept {
+  return id >= 0 && id < constraintCapacity() && constraints_[static_cast<std::size_t>(id)].active;
 }
 
 // ---------------------------------------------------------------- the cycle
@@ -326,7 +354,7 @@ UpdateStatus MultiRobotProblem::update() noexcept {
   assembleContacts();
   assembleDynamics();
   assembleBounds();
-  assembleDampers();
+  assembleConstraints();
   assembleTasks();
   qp_.H().diagonal().array() += settings_.regularisation;
   return UpdateStatus::Ok;
@@ -368,8 +396,15 @@ void MultiRobotProblem::layout() noexcept {
     c.row_offset = row;
     row += c.rows;
   }
-  const int mi = ntorque_rows_ + kDamperRows * countUsed(dampers_) + countUsed(joint_ineqs_);
-  qp_.resize(nv_total_ + nlambda_, nunactuated_ + ncontact_rows_, mi);
+  int mi = ntorque_rows_;
+  for (auto& s : constraints_) {
+    if (!s.active) continue;
+    s.eq_row = row;
+    row += s.constraint->equalityRows();
+    s.ineq_row = mi;
+    mi += s.constraint->inequalityRows();
+  }
+  qp_.resize(nv_total_ + nlambda_, row, mi);
 }
 
 void MultiRobotProblem::assembleContacts() noexcept {
@@ -501,183 +536,45 @@ void MultiRobotProblem::assembleBounds() noexcept {
   }
 }
 
-void MultiRobotProblem::assembleDampers() noexcept {
+void MultiRobotProblem::assembleConstraints() noexcept {
   auto C = qp_.C();
   auto l = qp_.l();
-  const double dt = settings_.dt;
-  int row = ntorque_rows_;
-  for (auto& dm : dampers_) {
-    if (!dm.used) continue;
-    const Entity& e = entity(dm.d.entity);
-    const int o = velocityOffset(dm.d.entity);
-    dm.polygon.clear();
-    for (const auto& c : contacts_) {
-      if (!c.used || c.d.entity != dm.d.entity || c.d.other_entity >= 0) continue;
-      const Pose sf = e.framePose(c.d.frame);
-      for (int i = 0; i < c.d.npoints; ++i) dm.polygon.add(sf.R * c.d.points[static_cast<std::size_t>(i)] + sf.p);
-    }
-    dm.polygon.build();
-    const Eigen::Vector2d cxy = e.com().head<2>();
-    Eigen::Vector3d cv;
-    cv.noalias() = e.comJacobian() * e.v();
-    const Eigen::Vector2d vxy = cv.head<2>();
-    const int edges = std::min(dm.polygon.edges(), kDamperRows);
-    for (int i = 0; i < edges; ++i) {
-      const double d = dm.polygon.distance(i, cxy);
-      if (d >= dm.d.interaction) continue;  // row stays free (l = −inf)
-      const Eigen::Vector2d a = dm.polygon.normal(i);
-      // ḋ + d̈Δt ≥ −ξ (d − d_s)/(d_i − d_s), d̈ = aᵀ(Jc q̈ + J̇c q̇)
-      C.block(row + i, o, 1, e.nv()).noalias() = dt * a.transpose() * e.comJacobian().topRows<2>();
-      l(row + i) = -dm.d.damping * (d - dm.d.security) / (dm.d.interaction - dm.d.security) -
-                   a.dot(vxy) - dt * a.dot(e.comBias().head<2>());
-    }
-    row += kDamperRows;
-  }
-  for (const auto& ji : joint_ineqs_) {
-    if (!ji.used) continue;
-    double s = ji.d.upper, sdot = 0.0;
-    for (int k = 0; k < ji.d.terms; ++k) {
-      const Entity& e = entity(ji.d.entity[static_cast<std::size_t>(k)]);
-      const int j = ji.d.joint[static_cast<std::size_t>(k)];
-      s -= ji.d.coeff[static_cast<std::size_t>(k)] * e.q()(e.qIndexOfV(j));
-      sdot -= ji.d.coeff[static_cast<std::size_t>(k)] * e.v()(j);
-    }
-    if (s < ji.d.interaction) {
-      // ṡ + s̈Δt ≥ −ξ (s − s_s)/(s_i − s_s), s̈ = −Σ c q̈
-      for (int k = 0; k < ji.d.terms; ++k) {
-        const int col = velocityOffset(ji.d.entity[static_cast<std::size_t>(k)]) + ji.d.joint[static_cast<std::size_t>(k)];
-        C(row, col) -= dt * ji.d.coeff[static_cast<std::size_t>(k)];
-      }
-      l(row) = -ji.d.damping * (s - ji.d.security) / (ji.d.interaction - ji.d.security) - sdot;
-    }
-    ++row;
+  auto u = qp_.u();
+  auto A = qp_.A();
+  auto b = qp_.b();
+  for (auto& s : constraints_) {
+    if (!s.active) continue;
+    const int mi = s.constraint->inequalityRows(), me = s.constraint->equalityRows();
+    ConstraintRows rows{C.middleRows(s.ineq_row, mi), l.segment(s.ineq_row, mi), u.segment(s.ineq_row, mi),
+                        A.middleRows(s.eq_row, me), b.segment(s.eq_row, me)};
+    s.constraint->update(*this, rows);
   }
 }
 
-void MultiRobotProblem::accumulate(int rows, int c0, int nc, const std::array<std::uint8_t, 6>& sel,
-                                   double w) noexcept {
+void MultiRobotProblem::accumulate(const TaskRows& r, const Task::Selection& sel, double w) noexcept {
   if (w <= 0.0) return;
   auto H = qp_.H();
   auto g = qp_.g();
-  for (int r = 0; r < rows; ++r) {
-    if (!sel[static_cast<std::size_t>(r)]) continue;
-    const auto Tr = T_.row(r).segment(c0, nc);
-    H.block(c0, c0, nc, nc).noalias() += w * Tr.transpose() * Tr;
-    g.segment(c0, nc).noalias() -= (w * t_(r)) * Tr.transpose();
+  if (r.identity) {  // T = I over [col0, col0 + rows): no selection
+    for (int k = 0; k < r.rows; ++k) {
+      H(r.col0 + k, r.col0 + k) += w;
+      g(r.col0 + k) -= w * r.t(k);
+    }
+    return;
+  }
+  for (int k = 0; k < r.rows; ++k) {
+    if (!sel[static_cast<std::size_t>(k)]) continue;
+    const auto Tr = r.T.row(k).segment(r.col0, r.cols);
+    H.block(r.col0, r.col0, r.cols, r.cols).noalias() += w * Tr.transpose() * Tr;
+    g.segment(r.col0, r.cols).noalias() -= (w * r.t(k)) * Tr.transpose();
   }
 }
 
 void MultiRobotProblem::assembleTasks() noexcept {
-  for (auto& t : tasks_) {
-    if (t.used) addTaskCost(t);
-  }
-}
-
-void MultiRobotProblem::addTaskCost(TaskSlot& s) noexcept {
-  const TaskDesc& t = s.d;
-  const double K = t.stiffness, D = kd(t);
-  auto H = qp_.H();
-  auto g = qp_.g();
-  s.error.setZero();
-  switch (t.type) {
-    case TaskType::Posture: {
-      const Entity& e = entity(t.entity);
-      const int o = velocityOffset(t.entity);
-      for (int k = e.jointOffset(); k < e.nv(); ++k) {
-        const double err = e.q()(e.qIndexOfV(k)) - s.posture(k);
-        const double ad = -K * err - D * e.v()(k);
-        H(o + k, o + k) += t.weight;
-        g(o + k) -= t.weight * ad;
-      }
-      return;
-    }
-    case TaskType::JointTarget: {
-      const Entity& e = entity(t.entity);
-      const int col = velocityOffset(t.entity) + t.joint;
-      const double err = e.q()(e.qIndexOfV(t.joint)) - t.target.x();
-      s.error(0) = err;
-      const double ad = -K * err - D * e.v()(t.joint);
-      H(col, col) += t.weight;
-      g(col) -= t.weight * ad;
-      return;
-    }
-    case TaskType::ForceMinimisation: {
-      for (int i = 0; i < contactCapacity(); ++i) {
-        const auto& c = contacts_[static_cast<std::size_t>(i)];
-        if (!c.used || (t.contact >= 0 && t.contact != i)) continue;
-        H.diagonal().segment(c.var_offset, c.d.variables()).array() += t.weight;
-      }
-      return;
-    }
-    case TaskType::ContactForce: {
-      if (!contactActive(t.contact)) return;
-      const auto& c = contacts_[static_cast<std::size_t>(t.contact)];
-      const int ng = c.d.variables();
-      T_.topLeftCorner(3, qp_.n()).setZero();
-      T_.block(0, c.var_offset, 3, ng) = c.W.block(3, 0, 3, ng);
-      t_.head<3>() = t.target;
-      s.error.head<3>() = c.wrench.tail<3>() - t.target;
-      accumulate(3, c.var_offset, ng, t.dims, t.weight);
-      return;
-    }
-    case TaskType::Com: {
-      // One entity, or the group CoM Σ mᵢcᵢ / Σ mᵢ with Jacobian blocks mᵢ/M · Jcᵢ.
-      int c0 = qp_.n(), c1 = 0;
-      double mtot = 0.0;
-      Eigen::Vector3d c = Eigen::Vector3d::Zero(), cdot = Eigen::Vector3d::Zero(), bias = Eigen::Vector3d::Zero();
-      for (int i = 0; i < entityCount(); ++i) {
-        const bool in = t.entity >= 0 ? i == t.entity : ((t.entity_mask >> i) & 1u) != 0;
-        if (!in) continue;
-        mtot += entity(i).mass();
-        c0 = std::min(c0, velocityOffset(i));
-        c1 = std::max(c1, velocityOffset(i) + entity(i).nv());
-      }
-      if (mtot <= 0.0) return;
-      T_.block(0, c0, 3, c1 - c0).setZero();
-      for (int i = 0; i < entityCount(); ++i) {
-        const bool in = t.entity >= 0 ? i == t.entity : ((t.entity_mask >> i) & 1u) != 0;
-        if (!in) continue;
-        const Entity& e = entity(i);
-        const double f = e.mass() / mtot;
-        T_.block(0, velocityOffset(i), 3, e.nv()) = f * e.comJacobian();
-        c += f * e.com();
-        Eigen::Vector3d cv;
-        cv.noalias() = e.comJacobian() * e.v();
-        cdot += f * cv;
-        bias += f * e.comBias();
-      }
-      s.error.head<3>() = c - t.target;
-      t_.head<3>() = -K * (c - t.target) - D * cdot - bias;
-      accumulate(3, c0, c1 - c0, t.dims, t.weight);
-      return;
-    }
-    case TaskType::FramePosition:
-    case TaskType::FrameOrientation:
-    case TaskType::FramePose: {
-      const Entity& e = entity(t.entity);
-      const int o = velocityOffset(t.entity), nv = e.nv();
-      auto J = Ja_.leftCols(nv);
-      e.frameJacobian(t.frame, t.point, J);
-      const Vector6d bias = e.frameBiasAcceleration(t.frame, t.point);
-      const Vector6d vel = J * e.v();
-      const Pose P = e.framePose(t.frame);
-      Vector6d err;
-      err.head<3>() = rotationVector(P.R * t.target_rotation.transpose());
-      err.tail<3>() = P.R * t.point + P.p - t.target;
-      const Vector6d ad = -K * err - D * vel - bias;
-      int r0 = 0, rows = 6;
-      if (t.type == TaskType::FramePosition) {
-        r0 = 3;
-        rows = 3;
-      } else if (t.type == TaskType::FrameOrientation) {
-        rows = 3;
-      }
-      T_.block(0, o, rows, nv) = J.middleRows(r0, rows);
-      t_.head(rows) = ad.segment(r0, rows);
-      s.error.head(rows) = err.segment(r0, rows);
-      accumulate(rows, o, nv, t.dims, t.weight);
-      return;
-    }
+  for (auto& s : tasks_) {
+    if (!s.active) continue;
+    TaskRows rows{T_, t_};
+    if (s.task->update(*this, rows)) accumulate(rows, s.task->selection(), s.task->weight());
   }
 }
 

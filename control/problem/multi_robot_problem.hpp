@@ -4,14 +4,17 @@
 //   equalities    the unactuated rows of the stacked EoM (13), the no-slip constraints of every
 //                 active contact (15–16) at the acceleration level;
 //   inequalities  torque limits (20) on the actuated rows of the EoM — τ is eliminated through
-//                 the EoM, τ = M q̈ + N − Σ Jᵀf, and recovered after the solve —, the CoM
-//                 support-region damper (paper 2, eq. 7), velocity dampers on joint inequalities;
+//                 the EoM, τ = M q̈ + N − Σ Jᵀf, and recovered after the solve —, and the rows
+//                 of every constraint object (problem/constraint.hpp: the CoM support-region
+//                 damper of paper 2, eq. 7, velocity dampers on joint inequalities, ...);
 //   bounds        joint velocity and position limits (22–23) on q̈, λ ≥ 0 (17);
-//   cost          Σ w_k ‖Sel_k (J_k q̈ + J̇_k q̇ − g̈ᵈ_k)‖² (25–26) + regularisation.
+//   cost          Σ w_k ‖Sel_k (T_k x − t_k)‖² over the task objects (problem/task.hpp; eq.
+//                 25–26) + regularisation.
 //
-// Contacts, tasks and dampers live in slots whose number is fixed at construction: adding,
-// removing and re-weighting them between cycles never allocates. update(), solve() and every
-// accessor are noexcept and allocation-free.
+// Contacts, tasks and constraints live in slots whose number is fixed at construction. Task and
+// constraint objects are built at set-up and handed over (addTask, addConstraint); removing,
+// restoring, re-weighting and re-targeting them between cycles never allocates. update(), solve()
+// and every accessor are noexcept and allocation-free.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "problem/constraint.hpp"
 #include "problem/contact.hpp"
 #include "problem/entity.hpp"
 #include "problem/problem_settings.hpp"
@@ -31,8 +35,8 @@
 
 namespace mrqp::problem {
 
-/// A linear inequality Σ cᵢ qᵢ ≤ upper over joints of one or several entities, kept by a velocity
-/// damper: with s = upper − Σ cᵢ qᵢ, ṡ + s̈ Δt ≥ −ξ (s − s_s)/(s_i − s_s) whenever s < s_i.
+/// Plain descriptions of the two velocity-damper constraints, for addJointInequality and
+/// addComDamper (set-up helpers that build the constraint object; see problem/constraints/).
 struct JointInequalityDesc {
   static constexpr int kMaxTerms = 4;
   int terms = 0;
@@ -45,8 +49,6 @@ struct JointInequalityDesc {
   double damping = 0.5;       ///< ξ
 };
 
-/// The CoM damper of one entity (paper 2, eq. 7) over the convex hull of its active contacts
-/// with the environment.
 struct ComDamperDesc {
   int entity = -1;
   double interaction = 0.05;  ///< d_i, m
@@ -62,7 +64,6 @@ enum class UpdateStatus : std::uint8_t {
 class MultiRobotProblem {
  public:
   static constexpr int kMaxEntities = 32;
-  static constexpr int kDamperRows = 16;  ///< rows reserved per CoM damper (polygon edges)
 
   /// Takes the entities (at most kMaxEntities) and allocates every buffer for the capacity.
   MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entities, const ProblemSettings& settings);
@@ -86,10 +87,17 @@ class MultiRobotProblem {
   int contactCapacity() const noexcept { return static_cast<int>(contacts_.size()); }
 
   // ---- tasks ----
-  /// Adds a task; returns its id or −1. A posture task takes the entity's current joint positions
-  /// as its target (change it with setPostureTarget).
-  int addTask(const TaskDesc& t) noexcept;
+  /// Adds a task built at set-up: checks it, puts it in a free slot and attach()es it (a posture
+  /// task without a target takes the entity's current joint positions). Returns its id, or −1
+  /// (see lastError()) when invalid or no slot is free. Allocation-free, except that when only
+  /// slots of removed tasks are left the oldest such task object is destroyed.
+  int addTask(std::unique_ptr<Task> task) noexcept;
+  /// Deactivates a task; the object stays in its slot (restoreTask brings it back).
   bool removeTask(int id) noexcept;
+  /// Re-activates a removed task under the same id. Allocation-free.
+  bool restoreTask(int id) noexcept;
+  /// Hands a task object (active or removed) back to the caller; its slot becomes free.
+  std::unique_ptr<Task> releaseTask(int id) noexcept;
   bool taskActive(int id) const noexcept;
   bool setTaskWeight(int id, double weight) noexcept;
   /// Stiffness K and damping D (D < 0: critical, 2√K).
@@ -98,19 +106,38 @@ class MultiRobotProblem {
   bool setTaskTargetRotation(int id, const Eigen::Matrix3d& R) noexcept;
   /// Joint targets of a posture task (size nv − jointOffset() of its entity).
   bool setPostureTarget(int id, const Eigen::Ref<const Eigen::VectorXd>& q_joints) noexcept;
-  const TaskDesc& task(int id) const noexcept { return tasks_[static_cast<std::size_t>(id)].d; }
+  /// Velocity and acceleration references ġʳᵉᶠ, g̈ʳᵉᶠ of eq. 26 (size: the task's dimension,
+  /// Task::referenceRows(); rows as the task's, angular first for a pose).
+  bool setTaskReference(int id, const Eigen::Ref<const Eigen::VectorXd>& velocity,
+                        const Eigen::Ref<const Eigen::VectorXd>& acceleration) noexcept;
+  /// Position, velocity and acceleration references of a three-row task (CoM, frame position).
+  bool setTaskReference(int id, const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
+                        const Eigen::Vector3d& acceleration) noexcept;
+  /// The task object of a slot (active or removed; the slot must hold one).
+  const Task& task(int id) const noexcept { return *tasks_[static_cast<std::size_t>(id)].task; }
+  Task& task(int id) noexcept { return *tasks_[static_cast<std::size_t>(id)].task; }
   int taskCapacity() const noexcept { return static_cast<int>(tasks_.size()); }
-  /// Current value of a task (Com, frame and joint tasks: position / rotation vector / value)
-  /// and its error g − gʳᵉᶠ, after update(); rows as the task's (angular first for a pose).
+  /// Error g − gʳᵉᶠ of an active task after update() (Task::error(); zero for posture and force
+  /// minimisation); rows as the task's (angular first for a pose).
   Vector6d taskError(int id) const noexcept;
 
-  // ---- dampers ----
-  int addComDamper(const ComDamperDesc& d) noexcept;
+  // ---- constraints ----
+  /// Adds a constraint built at set-up into a free slot; returns its id or −1 (see lastError()).
+  /// Its rows are reserved from the next update(). Same slot rules as addTask.
+  int addConstraint(std::unique_ptr<Constraint> constraint) noexcept;
+  bool removeConstraint(int id) noexcept;
+  bool restoreConstraint(int id) noexcept;
+  std::unique_ptr<Constraint> releaseConstraint(int id) noexcept;
+  bool constraintActive(int id) const noexcept;
+  const Constraint& constraint(int id) const noexcept { return *constraints_[static_cast<std::size_t>(id)].constraint; }
+  Constraint& constraint(int id) noexcept { return *constraints_[static_cast<std::size_t>(id)].constraint; }
+  int constraintCapacity() const noexcept { return static_cast<int>(constraints_.size()); }
+
+  /// Builds a JointInequality / ComDamper and adds it (addConstraint). Set-up only: these allocate
+  /// the object (on the cycle, add an object built beforehand). Return the constraint id or −1.
   int addJointInequality(const JointInequalityDesc& d) noexcept;
-  bool removeJointInequality(int id) noexcept;
-  const SupportPolygon& supportPolygon(int damper) const noexcept {
-    return dampers_[static_cast<std::size_t>(damper)].polygon;
-  }
+  int addComDamper(const ComDamperDesc& d) noexcept;
+  bool removeJointInequality(int id) noexcept { return removeConstraint(id); }
 
   // ---- the cycle ----
   /// Updates every entity's model at its current state and assembles the QP.
@@ -136,6 +163,15 @@ class MultiRobotProblem {
   }
   /// Column of a contact's first λ in x (−1 when inactive), after update().
   int lambdaOffset(int contact) const noexcept { return contacts_[static_cast<std::size_t>(contact)].var_offset; }
+  /// λ variables of every active contact, after update() (they follow the q̈ in x, in slot order).
+  int lambdaCount() const noexcept { return nlambda_; }
+  /// The wrench basis W of a contact after update(): its wrench is W λ (moment about
+  /// contactPoint(); force), columns 0 … variables() − 1.
+  const Eigen::Matrix<double, 6, kMaxContactPoints * kMaxConeGenerators>& contactWrenchBasis(int contact) const noexcept {
+    return contacts_[static_cast<std::size_t>(contact)].W;
+  }
+  /// A 6 × (largest nv) scratch matrix for task and constraint objects within their update().
+  Eigen::MatrixXd& jacobianWork() const noexcept { return Jw_; }
 
   const qp::QpProblem& qp() const noexcept { return qp_; }
   const qp::QpSolver& solver() const noexcept { return solver_; }
@@ -162,19 +198,13 @@ class MultiRobotProblem {
     Vector6d wrench = Vector6d::Zero();
   };
   struct TaskSlot {
-    TaskDesc d;
-    bool used = false;
-    Eigen::VectorXd posture;  // joint targets of a posture task (max nv)
-    Vector6d error = Vector6d::Zero();
+    std::unique_ptr<Task> task;
+    bool active = false;
   };
-  struct DamperSlot {
-    ComDamperDesc d;
-    bool used = false;
-    SupportPolygon polygon;
-  };
-  struct JointIneqSlot {
-    JointInequalityDesc d;
-    bool used = false;
+  struct ConstraintSlot {
+    std::unique_ptr<Constraint> constraint;
+    bool active = false;
+    int ineq_row = 0, eq_row = 0;  // first rows in C and A, after layout()
   };
 
   void establish(ContactSlot& c) noexcept;
@@ -182,12 +212,10 @@ class MultiRobotProblem {
   void assembleContacts() noexcept;
   void assembleDynamics() noexcept;
   void assembleBounds() noexcept;
-  void assembleDampers() noexcept;
+  void assembleConstraints() noexcept;
   void assembleTasks() noexcept;
-  void addTaskCost(TaskSlot& t) noexcept;
-  // Adds w·Σ_r sel_r (T_r x − t_r)² with T given over columns [c0, c0 + nc).
-  void accumulate(int rows, int c0, int nc, const std::array<std::uint8_t, 6>& sel, double w) noexcept;
-  double kd(const TaskDesc& t) const noexcept;
+  // Adds w·Σ_r sel_r (T_r x − t_r)² for the rows a task wrote.
+  void accumulate(const TaskRows& rows, const Task::Selection& sel, double w) noexcept;
 
   ProblemSettings settings_;
   std::vector<std::unique_ptr<Entity>> entities_;
@@ -195,17 +223,18 @@ class MultiRobotProblem {
   int nv_total_ = 0, max_nv_ = 0;
   std::vector<ContactSlot> contacts_;
   std::vector<TaskSlot> tasks_;
-  std::vector<DamperSlot> dampers_;
-  std::vector<JointIneqSlot> joint_ineqs_;
+  std::vector<ConstraintSlot> constraints_;
   int nlambda_ = 0, ncontact_rows_ = 0, nunactuated_ = 0, ntorque_rows_ = 0;
+  int max_constraint_rows_ = 0, max_constraint_equalities_ = 0;
 
   qp::QpProblem qp_;
   qp::QpSolver solver_;
   Eigen::MatrixXd E_;        // stacked EoM rows: τ = E x + N on actuated rows (Σnv × n)
   Eigen::VectorXd Nall_;     // stacked N
   Eigen::MatrixXd Ja_, Jb_;  // 6 × max nv work
+  mutable Eigen::MatrixXd Jw_;  // 6 × max nv scratch of task and constraint objects
   Eigen::MatrixXd T_;        // task rows, 6 × n
-  Eigen::Matrix<double, 6, 1> t_;
+  Eigen::VectorXd t_;        // task targets, max(6, max nv, max λ)
   Eigen::VectorXd x_, tau_;
   const char* error_ = "";
 };

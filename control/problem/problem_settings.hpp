@@ -13,8 +13,15 @@ struct ProblemSettings {
   int max_tasks = 32;                 ///< tasks that may exist at once
   int max_contacts = 16;              ///< contacts that may exist at once
   int max_contact_generators = 256;   ///< λ variables of all contacts together
+  /// Constraint capacity (problem/constraint.hpp). Slots: max_constraints, or, when < 0,
+  /// max_com_dampers + max_joint_inequalities. Inequality rows of all constraints together:
+  /// max_constraint_rows, or, when < 0, 16 per CoM damper + 1 per joint inequality. Equality rows:
+  /// max_constraint_equalities.
   int max_com_dampers = 4;
   int max_joint_inequalities = 8;
+  int max_constraints = -1;
+  int max_constraint_rows = -1;
+  int max_constraint_equalities = 0;
   double contact_stiffness = 100.0;   ///< Baumgarte gains holding established contacts together
   double contact_damping = 20.0;
   /// Look-ahead T of the joint position limits (eq. 23 written with T instead of Δt, T ≥ Δt):

@@ -65,20 +65,9 @@ struct ContactSpec {
   Source source;
 };
 
-enum class TaskKind {
-  Posture,
-  Com,
-  FramePosition,
-  FrameOrientation,
-  FramePose,
-  JointTarget,
-  ContactForce,
-  ForceMinimisation,
-};
-
 struct TaskSpec {
   std::string name;
-  TaskKind kind = TaskKind::Posture;
+  std::string type = "posture";       // the kind's name (task_registry.cpp)
   std::vector<std::string> entities;  // one, or several for a group CoM
   std::string frame;                  // frame tasks
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // frame tasks: controlled point in the frame

@@ -2,6 +2,7 @@
 // dotted path of the offending key.
 #include "scene/scene_yaml.hpp"
 
+#include "scene/task_kind.hpp"
 #include "scene/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -216,53 +217,31 @@ ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string&
 
 // ---- tasks -------------------------------------------------------------------------------------
 
-struct TaskKindInfo {
-  const char* type;
-  TaskKind kind;
-  int size;             // entries of dims and target; -1: any
-  const char* keys[4];  // keys used beyond the common ones
-};
-
-const TaskKindInfo kTaskKinds[] = {
-    {"posture", TaskKind::Posture, -1, {"entity", "target", nullptr, nullptr}},
-    {"com", TaskKind::Com, 3, {"entity", "entities", "target", nullptr}},
-    {"frame_position", TaskKind::FramePosition, 3, {"entity", "frame", "point", "target"}},
-    {"frame_orientation", TaskKind::FrameOrientation, 3, {"entity", "frame", "target", nullptr}},
-    {"frame_pose", TaskKind::FramePose, 6, {"entity", "frame", "point", "target"}},
-    {"joint", TaskKind::JointTarget, 1, {"entity", "joint", "target", nullptr}},
-    {"force", TaskKind::ContactForce, 3, {"contact", "target", nullptr, nullptr}},
-    {"force_min", TaskKind::ForceMinimisation, -1, {"contact", nullptr, nullptr, nullptr}},
-};
-
-bool taskUsesKey(const TaskKindInfo& k, const std::string& key) {
+bool taskUsesKey(const TaskKindEntry& k, const std::string& key) {
   static const char* const common[] = {"name", "type", "weight", "stiffness", "damping", "dims",
                                        "active"};
   const auto is = [&](const char* c) { return c != nullptr && key == c; };
   return std::any_of(std::begin(common), std::end(common), is) ||
-         std::any_of(std::begin(k.keys), std::end(k.keys), is);
+         std::any_of(k.keys.begin(), k.keys.end(), is);
 }
 
-const TaskKindInfo& readTaskKind(const Reader& r, const YAML::Node& n, const std::string& path) {
+const TaskKindEntry& readTaskKind(const Reader& r, const YAML::Node& n, const std::string& path) {
   const std::string type = r.name(n, path);
-  for (const TaskKindInfo& k : kTaskKinds) {
-    if (type == k.type) {
-      return k;
-    }
+  if (const TaskKindEntry* k = findTaskKind(type)) {
+    return *k;
   }
-  r.fail(n, path,
-         "expected posture, com, frame_position, frame_orientation, frame_pose, joint, force or "
-         "force_min, got " + describe(n));
+  r.fail(n, path, "expected " + taskKindNames() + ", got " + describe(n));
 }
 
 std::vector<int> readDims(const Reader& r, const YAML::Node& n, const std::string& path,
-                          const TaskKindInfo& k) {
+                          const TaskKindEntry& k) {
   const std::vector<YAML::Node> items = r.list(n, path);
   const int count = static_cast<int>(items.size());
   if (k.size >= 0 && count != k.size) {
-    r.fail(n, path, "expected " + std::to_string(k.size) + " entries for a " + k.type +
+    r.fail(n, path, "expected " + std::to_string(k.size) + " entries for a " + k.name +
                         " task, got " + std::to_string(count));
   }
-  if (count == 0 && k.kind != TaskKind::ForceMinimisation) {
+  if (count == 0 && !k.dims_may_be_empty) {
     r.fail(n, path, "expected at least one entry");
   }
   std::vector<int> dims;
@@ -273,47 +252,11 @@ std::vector<int> readDims(const Reader& r, const YAML::Node& n, const std::strin
 }
 
 void readTarget(const Reader& r, const YAML::Node& n, const std::string& path,
-                const TaskKindInfo& k, TaskSpec* t) {
-  if (k.kind == TaskKind::Posture) {
-    t->posture_target = r.numberMap(n, path);
-  } else if (k.kind == TaskKind::JointTarget && n.IsScalar()) {
-    t->target = Eigen::VectorXd::Constant(1, r.number(n, path));
+                const TaskKindEntry& k, TaskSpec* t) {
+  if (k.read_target != nullptr) {
+    k.read_target(r, n, path, t);
   } else {
     t->target = r.numbers(n, path, k.size);
-  }
-}
-
-/// What the task acts on: entity or entities, frame and point, joint, or contact.
-void readTaskSubject(const Map& m, const TaskKindInfo& k, TaskSpec* t) {
-  const Reader& r = m.reader();
-  if (k.kind == TaskKind::Com && m.has("entities")) {
-    m.forbid("entity", "give either 'entity' or 'entities', not both");
-    t->entities = r.names(m.require("entities"), m.at("entities"));
-    if (t->entities.empty()) {
-      r.fail(m.require("entities"), m.at("entities"), "expected at least one entity");
-    }
-  } else if (k.kind != TaskKind::ContactForce && k.kind != TaskKind::ForceMinimisation) {
-    t->entities.push_back(m.name("entity"));
-  }
-  switch (k.kind) {
-    case TaskKind::FramePosition:
-    case TaskKind::FrameOrientation:
-    case TaskKind::FramePose:
-      t->frame = m.name("frame");
-      t->point = m.vec3("point", t->point);
-      break;
-    case TaskKind::JointTarget:
-      t->joint = m.name("joint");
-      break;
-    case TaskKind::ContactForce:
-      t->contact = m.name("contact");
-      break;
-    case TaskKind::ForceMinimisation:  // without a contact: every contact's forces
-      if (m.has("contact")) t->contact = m.name("contact");
-      break;
-    case TaskKind::Posture:
-    case TaskKind::Com:
-      break;
   }
 }
 
@@ -324,14 +267,14 @@ TaskSpec readTask(const Reader& r, const YAML::Node& n, const std::string& path)
   TaskSpec t;
   t.source = m.source();
   t.name = m.name("name");
-  const TaskKindInfo& k = readTaskKind(r, m.require("type"), m.at("type"));
-  t.kind = k.kind;
+  const TaskKindEntry& k = readTaskKind(r, m.require("type"), m.at("type"));
+  t.type = k.name;
   for (const Entry& e : m.entries()) {
     if (!taskUsesKey(k, e.key)) {
-      r.fail(e.key_node, m.at(e.key), std::string("not used by a ") + k.type + " task");
+      r.fail(e.key_node, m.at(e.key), std::string("not used by a ") + k.name + " task");
     }
   }
-  readTaskSubject(m, k, &t);
+  k.read_subject(m, &t);
   t.weight = m.number("weight", Bound::NonNegative, t.weight);
   t.stiffness = m.number("stiffness", Bound::NonNegative, t.stiffness);
   if (m.has("damping")) {

@@ -11,6 +11,8 @@
 #include "problem/multi_robot_problem.hpp"
 #include "problem/rigid_object.hpp"
 #include "problem/support_polygon.hpp"
+#include "problem/tasks/com_task.hpp"
+#include "problem/tasks/frame_position_task.hpp"
 #include "scene_checks.hpp"
 
 using namespace mrqp::problem;
@@ -150,20 +152,30 @@ TEST_CASE("Contacts and tasks are added, removed and refused with a reason", "[p
   CHECK(p.addContact(square(0, 0.05, -0.05)) == -1);  // capacity
   CHECK(p.removeContact(c));
   CHECK(p.addContact(square(0, 0.05, -0.05)) == 0);
-  TaskDesc t;
-  t.type = TaskType::FramePosition;
-  t.entity = 0;
-  t.frame = 3;
-  CHECK(p.addTask(t) == -1);
-  t.frame = 0;
-  t.weight = -1.0;
-  CHECK(p.addTask(t) == -1);
-  t.weight = 1.0;
-  const int id = p.addTask(t);
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  CHECK(p.addTask(std::make_unique<FramePositionTask>(0, 3, zero, zero)) == -1);  // no frame 3
+  CHECK(std::string(p.lastError()).find("frame") != std::string::npos);
+  CHECK(p.addTask(nullptr) == -1);
+  auto bad_weight = std::make_unique<FramePositionTask>(0, 0, zero, zero);
+  CHECK_FALSE(bad_weight->setWeight(-1.0));
+  CHECK(bad_weight->weight() == 1.0);
+  const int id = p.addTask(std::make_unique<FramePositionTask>(0, 0, zero, zero));
   CHECK(id == 0);
   CHECK(p.setTaskWeight(id, 5.0));
+  CHECK(p.task(id).weight() == 5.0);
   CHECK_FALSE(p.setTaskWeight(id, std::nan("")));
-  CHECK(p.addTask(t) == -1);
+  CHECK(p.addTask(std::make_unique<FramePositionTask>(0, 0, zero, zero)) == -1);  // capacity
+  // Removing parks the object: restored under the same id; released, its slot is free again.
+  CHECK(p.removeTask(id));
+  CHECK_FALSE(p.taskActive(id));
+  CHECK_FALSE(p.setTaskWeight(id, 2.0));
+  CHECK(p.restoreTask(id));
+  CHECK(p.taskActive(id));
+  CHECK(p.task(id).weight() == 5.0);
+  std::unique_ptr<Task> back = p.releaseTask(id);
+  REQUIRE(back != nullptr);
+  CHECK_FALSE(p.taskActive(id));
+  CHECK(p.addTask(std::move(back)) == id);
 }
 
 TEST_CASE("A group CoM task measures the mass-weighted CoM of its entities", "[problem]") {
@@ -172,14 +184,10 @@ TEST_CASE("A group CoM task measures the mass-weighted CoM of its entities", "[p
   es.push_back(cube("b", 3.0, 0.0));
   es[1]->q()(0) = 2.0;
   MultiRobotProblem p(std::move(es), ProblemSettings{});
-  TaskDesc t;
-  t.type = TaskType::Com;
-  t.entity_mask = 0b11;
-  t.target = {1.0, 0.0, 0.0};
-  const int id = p.addTask(t);
+  const int id = p.addTask(std::make_unique<ComTask>(0b11u, Eigen::Vector3d(1.0, 0.0, 0.0)));
   REQUIRE(id >= 0);
   p.update();
   CHECK((p.taskError(id).head<3>() - Eigen::Vector3d(0.5, 0.0, 0.0)).norm() < 1e-12);  // (0·1 + 2·3)/4 − 1
-  t.entity_mask = 0b100;  // no such entity
-  CHECK(p.addTask(t) == -1);
+  // no such entity
+  CHECK(p.addTask(std::make_unique<ComTask>(0b100u, Eigen::Vector3d(1.0, 0.0, 0.0))) == -1);
 }

@@ -1,5 +1,5 @@
 // The control cycle of both shipped scenes allocates nothing: 10,000 cycles each (update, solve,
-// integrate), with tasks re-weighted, removed and added again and contacts removed and added
+// integrate), with tasks re-weighted, removed, restored, released and added again and contacts removed and added
 // again between cycles, counted by a replaced global allocator and, since every source of the
 // cycle is compiled into this program with EIGEN_RUNTIME_NO_MALLOC and assertions on, checked by
 // Eigen itself.
@@ -30,14 +30,16 @@ int run(mrqp::scene::Scene& scene, int cycles, const std::string& task, const st
   auto& p = *scene.problem;
   int task_id = scene.task(task);
   int contact_id = scene.contact(contact);
-  const mrqp::problem::TaskDesc task_desc = p.task(task_id);
+  const double weight = p.task(task_id).weight();
   const mrqp::problem::ContactDesc contact_desc = p.contact(contact_id);
   int failures = 0;
   for (int k = 0; k < cycles; ++k) {
-    if (k % 250 == 125) p.setTaskWeight(task_id, task_desc.weight * (k % 500 == 125 ? 0.5 : 1.0));
+    if (k % 250 == 125) p.setTaskWeight(task_id, weight * (k % 500 == 125 ? 0.5 : 1.0));
     if (k % 1000 == 500) {
+      // Removed and restored, then handed back and added again: both allocation-free.
       p.removeTask(task_id);
-      task_id = p.addTask(task_desc);
+      if (!p.restoreTask(task_id)) return -1;
+      task_id = p.addTask(p.releaseTask(task_id));
       p.removeContact(contact_id);
       contact_id = p.addContact(contact_desc);
       if (task_id < 0 || contact_id < 0) return -1;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "scene/builtin_models.hpp"
+#include "problem/tasks/frame_position_task.hpp"
 #include "scene/scene_builder.hpp"
 
 using Catch::Matchers::Contains;
@@ -53,8 +54,8 @@ TEST_CASE("A scene builds with its defaults: targets at the start state", "[scen
                                    "s.yaml"),
       models);
   auto& p = *scene.problem;
-  const auto& t = p.task(scene.task("reach"));
-  CHECK((t.target - p.entity(0).framePose(t.frame).p).norm() < 1e-12);
+  const auto& t = dynamic_cast<const mrqp::problem::FramePositionTask&>(p.task(scene.task("reach")));
+  CHECK((t.target() - p.entity(0).framePose(t.frame()).p).norm() < 1e-12);
   CHECK(p.entity(0).fullyActuated());
 }
 

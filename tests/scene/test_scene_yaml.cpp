@@ -155,7 +155,7 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
 
   const TaskSpec& posture = s.tasks[0];
   CHECK(posture.name == "posture");
-  CHECK(posture.kind == TaskKind::Posture);
+  CHECK(posture.type == "posture");
   CHECK(posture.entities == std::vector<std::string>{"jvrc"});
   CHECK(posture.weight == 1.0);
   CHECK(posture.stiffness == 5.0);
@@ -168,7 +168,7 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
   CHECK(posture.source.line == 54);
 
   const TaskSpec& com = s.tasks[1];
-  CHECK(com.kind == TaskKind::Com);
+  CHECK(com.type == "com");
   CHECK(com.entities == std::vector<std::string>{"jvrc", "box"});
   CHECK(com.weight == 1.0);
   CHECK(com.stiffness == 10.0);
@@ -178,7 +178,7 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
   CHECK(com.source.line == 60);
 
   const TaskSpec& hand = s.tasks[2];
-  CHECK(hand.kind == TaskKind::FramePosition);
+  CHECK(hand.type == "frame_position");
   CHECK(hand.entities == std::vector<std::string>{"jvrc"});
   CHECK(hand.frame == "R_WRIST_Y_S");
   CHECK(near(hand.point, Eigen::Vector3d(0, 0, -0.05)));
@@ -189,14 +189,14 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
   CHECK_FALSE(hand.target.has_value());
 
   const TaskSpec& head = s.tasks[3];
-  CHECK(head.kind == TaskKind::FrameOrientation);
+  CHECK(head.type == "frame_orientation");
   CHECK(head.frame == "NECK_P_S");
   CHECK(near(head.point, Eigen::Vector3d::Zero()));
   REQUIRE(head.target.has_value());
   CHECK(near(*head.target, Eigen::Vector3d(0, 0.3, 0)));
 
   const TaskSpec& pose = s.tasks[4];
-  CHECK(pose.kind == TaskKind::FramePose);
+  CHECK(pose.type == "frame_pose");
   CHECK(pose.entities == std::vector<std::string>{"box"});
   CHECK(pose.frame == "box");
   CHECK(pose.weight == 100.0);
@@ -208,21 +208,21 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
   CHECK_FALSE(pose.active);
 
   const TaskSpec& open = s.tasks[5];
-  CHECK(open.kind == TaskKind::JointTarget);
+  CHECK(open.type == "joint");
   CHECK(open.entities == std::vector<std::string>{"door"});
   CHECK(open.joint == "door");
   REQUIRE(open.target.has_value());
   CHECK(near(*open.target, Eigen::VectorXd::Constant(1, 0.8)));
 
   const TaskSpec& push = s.tasks[6];
-  CHECK(push.kind == TaskKind::ContactForce);
+  CHECK(push.type == "force");
   CHECK(push.entities.empty());
   CHECK(push.contact == "right_hand");
   REQUIRE(push.target.has_value());
   CHECK(near(*push.target, Eigen::Vector3d(0, 0, 15)));
 
   const TaskSpec& rest = s.tasks[7];
-  CHECK(rest.kind == TaskKind::ForceMinimisation);
+  CHECK(rest.type == "force_min");
   CHECK(rest.contact == "left_foot");
   CHECK(rest.weight == 0.01);
   CHECK(rest.dims.empty());
@@ -289,7 +289,7 @@ TEST_CASE("a force_min task without a contact covers every contact", "[scene]") 
   const SceneSpec s = loadSceneString(
       "entities: [{name: arm, model: panda}]\ntasks: [{name: rest, type: force_min}]\n", "m.yaml");
   REQUIRE(s.tasks.size() == 1);
-  CHECK(s.tasks[0].kind == TaskKind::ForceMinimisation);
+  CHECK(s.tasks[0].type == "force_min");
   CHECK(s.tasks[0].contact.empty());
   CHECK(s.tasks[0].entities.empty());
   CHECK(s.tasks[0].source.line == 2);

@@ -10,12 +10,22 @@
 #include <cmath>
 #include <string>
 
+#include "problem/constraints/com_damper.hpp"
 #include "problem/contact.hpp"
+#include "problem/tasks/contact_force_task.hpp"
+#include "problem/tasks/force_min_task.hpp"
+#include "problem/tasks/frame_pose_task.hpp"
+#include "problem/tasks/joint_task.hpp"
+#include "problem/tasks/posture_task.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene_checks.hpp"
 
-using mrqp::problem::TaskType;
+using mrqp::problem::ComDamper;
+using mrqp::problem::ForceMinTask;
+using mrqp::problem::FramePoseTask;
+using mrqp::problem::JointTask;
+using mrqp::problem::PostureTask;
 using mrqp::qp::QpStatus;
 
 namespace {
@@ -36,15 +46,17 @@ TEST_CASE("JVRC-1 carries a box to its target with a task on the box pose only",
   REQUIRE(box >= 0);
   // No task on the hands or feet: the box pose, and regularisers (posture, small forces).
   for (const auto& [name, id] : scene.tasks) {
-    const auto& t = p.task(id);
-    const bool allowed = (t.type == TaskType::FramePose && t.entity == box) ||
-                         t.type == TaskType::Posture || t.type == TaskType::ForceMinimisation;
+    const auto* pose = dynamic_cast<const FramePoseTask*>(&p.task(id));
+    const bool allowed = (pose != nullptr && pose->entity() == box) ||
+                         dynamic_cast<const PostureTask*>(&p.task(id)) != nullptr ||
+                         dynamic_cast<const ForceMinTask*>(&p.task(id)) != nullptr;
     CHECK(allowed);
   }
   const int task = scene.task("box_pose");
   const int lh = scene.contact("left_hand"), rh = scene.contact("right_hand");
-  const Eigen::Vector3d target_p = p.task(task).target;
-  const Eigen::Matrix3d target_R = p.task(task).target_rotation;
+  const auto& box_pose = dynamic_cast<const FramePoseTask&>(p.task(task));
+  const Eigen::Vector3d target_p = box_pose.target();
+  const Eigen::Matrix3d target_R = box_pose.targetRotation();
   REQUIRE((target_p - p.entity(box).framePose(0).p).norm() > 0.05);
 
   double worst_eom = 0.0, worst_cone = 0.0, worst_margin = 1.0, worst_pair = 0.0;
@@ -54,7 +66,7 @@ TEST_CASE("JVRC-1 carries a box to its target with a task on the box pose only",
     REQUIRE(p.solve() == QpStatus::Optimal);
     worst_eom = std::max(worst_eom, mrqp::testing::eomResidual(p));
     worst_cone = std::max(worst_cone, mrqp::testing::coneViolation(p));
-    worst_margin = std::min(worst_margin, p.supportPolygon(0).margin(p.entity(jvrc).com().head<2>()));
+    worst_margin = std::min(worst_margin, dynamic_cast<const ComDamper&>(p.constraint(0)).polygon().margin(p.entity(jvrc).com().head<2>()));
     // Equal and opposite by construction: the robot's hand gets −w at the very same point, which
     // eomResidual checks against the robot's own dynamics; here the box's net wrench is compared
     // with what its Newton–Euler equation needs.
@@ -92,15 +104,16 @@ TEST_CASE("A Panda opens a latched door with a task on the door angle only", "[s
   auto& p = *scene.problem;
   const int panda = p.entityIndex("panda"), door = p.entityIndex("door");
   for (const auto& [name, id] : scene.tasks) {
-    const auto& t = p.task(id);
-    const bool allowed = (t.type == TaskType::JointTarget && t.entity == door) ||
-                         (t.type == TaskType::Posture && t.entity == panda) ||
-                         t.type == TaskType::ForceMinimisation;
+    const auto* joint = dynamic_cast<const JointTask*>(&p.task(id));
+    const auto* posture = dynamic_cast<const PostureTask*>(&p.task(id));
+    const bool allowed = (joint != nullptr && joint->entity() == door) ||
+                         (posture != nullptr && posture->entity() == panda) ||
+                         dynamic_cast<const ForceMinTask*>(&p.task(id)) != nullptr;
     CHECK(allowed);
   }
   const auto& d = p.entity(door);
   const int hinge = d.jointIndex("door"), handle = d.jointIndex("handle");
-  const double target = p.task(scene.task("door_angle")).target.x();
+  const double target = dynamic_cast<const JointTask&>(p.task(scene.task("door_angle"))).target();
   REQUIRE(target < -0.1);
   // The spring of the handle comes from the scene file.
   CHECK(d.springs()[static_cast<std::size_t>(handle)].stiffness == 2.0);
@@ -133,13 +146,10 @@ TEST_CASE("A QP force task sets the squeeze on the box that the dynamics leave f
   const int lh = scene.contact("left_hand"), rh = scene.contact("right_hand");
   // The hands' squeeze is an internal force: the box's motion does not fix it. Ask for 30 N on
   // the left face along y only (the force on the box points into it, −y).
-  mrqp::problem::TaskDesc t;
-  t.type = TaskType::ContactForce;
-  t.contact = lh;
-  t.weight = 10.0;
-  t.target = Eigen::Vector3d(0.0, -30.0, 0.0);
-  t.dims = {{0, 1, 0, 0, 0, 0}};
-  REQUIRE(p.addTask(t) >= 0);
+  auto t = std::make_unique<mrqp::problem::ContactForceTask>(lh, Eigen::Vector3d(0.0, -30.0, 0.0));
+  t->setWeight(10.0);
+  t->setSelection({{0, 1, 0, 0, 0, 0}});
+  REQUIRE(p.addTask(std::move(t)) >= 0);
   for (int k = 0; k < 200; ++k) {
     p.update();
     REQUIRE(p.solve() == QpStatus::Optimal);
