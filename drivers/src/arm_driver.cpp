@@ -6,7 +6,6 @@
 #include "mrqp/firmware_if/canopen_ids.h"
 #include "mrqp/firmware_if/emcy.h"
 #include "mrqp/firmware_if/nmt.h"
-#include "mrqp/firmware_if/sync.h"
 
 namespace mrqp::drivers {
 
@@ -74,25 +73,20 @@ void ArmDriver::start(TimeNs now) noexcept
 {
   phase_ = config_.reset == NmtReset::None ? ArmPhase::Configuring : ArmPhase::Resetting;
   phase_since_ = now;
-  next_master_heartbeat_ = now;
+  master_heartbeat_.restart(now);
   for (BusSlot& b : buses_) {
     b.cyclic_sent = false;
-    b.sync_counter = 0;
+    b.sync.restart();
   }
   for (Drive& d : drives_) {
-    d.write_step = 0;
-    mrqp_fw_sdo_client_reset(&d.sdo);
-    d.sdo_busy = false;
+    d.sdo.restart();
     d.has_pending = false;
-    d.booted = config_.reset == NmtReset::None;
-    d.configured = d.writes.empty();
-    d.hb_monitor = false;
+    d.heartbeat.restart();
     d.sticky = 0;
     d.faults.sdo_abort_code = 0;
     d.faults.sdo_index = 0;
     d.faults.sdo_subindex = 0;
     d.faults.missed_cycles = 0;
-    d.nmt_commanded = now;
     d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
     d.target_since = now;
     d.sp_position_valid = false;
@@ -102,10 +96,7 @@ void ArmDriver::start(TimeNs now) noexcept
     d.state.state = MRQP_FW_CIA402_UNKNOWN;
     d.state.controlword = 0;
     mrqp_fw_frame f;
-    const mrqp_fw_nmt_cmd cmd = config_.reset == NmtReset::Node            ? MRQP_FW_NMT_RESET_NODE
-                                : config_.reset == NmtReset::Communication ? MRQP_FW_NMT_RESET_COMM
-                                                                           : MRQP_FW_NMT_ENTER_PREOP;
-    (void)mrqp_fw_nmt_pack(cmd, d.cfg.node, &f);
+    d.nmt.begin(now, &f);
     set_pending(d, f);
   }
 }
@@ -242,14 +233,14 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
   if (phase_ == ArmPhase::Resetting) {
     bool all = true;
     for (const Drive& d : drives_) {
-      all = all && d.booted;
+      all = all && d.nmt.booted();
     }
     if (all) {
       phase_ = ArmPhase::Configuring;
       phase_since_ = now;
-    } else if (now - phase_since_ > config_.boot_timeout) {
+    } else {
       for (Drive& d : drives_) {
-        if (!d.booted) {
+        if (d.nmt.process(now)) {
           fail_boot(d, fault::kTimeout | fault::kBootFailed);
         }
       }
@@ -258,27 +249,26 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
   if (phase_ == ArmPhase::Configuring) {
     bool all = true;
     for (Drive& d : drives_) {
-      if (d.sdo_busy && now - d.sdo_sent > config_.sdo_timeout) {
-        mrqp_fw_frame out;
-        if (mrqp_fw_sdo_client_timeout(&d.sdo, &out) == MRQP_FW_SDO_STEP_ABORT_SEND) {
+      mrqp_fw_frame out;
+      const SdoWriteSequence::Step step = d.sdo.process(now, false, &out);
+      if (step == SdoWriteSequence::Step::Failed || step == SdoWriteSequence::Step::FailedSend) {
+        if (step == SdoWriteSequence::Step::FailedSend) {
           set_pending(d, out);
         }
-        d.sdo_busy = false;
-        d.faults.sdo_abort_code = MRQP_FW_SDO_ABORT_TIMEOUT;
-        d.faults.sdo_index = d.writes[d.write_step].index;
-        d.faults.sdo_subindex = d.writes[d.write_step].subindex;
+        d.faults.sdo_abort_code = d.sdo.abort_code();
+        d.faults.sdo_index = d.sdo.current().index;
+        d.faults.sdo_subindex = d.sdo.current().subindex;
         fail_boot(d, fault::kTimeout | fault::kBootFailed);
       }
-      all = all && d.configured;
+      all = all && d.sdo.done();
     }
     if (phase_ == ArmPhase::Configuring && all) {
       phase_ = ArmPhase::Starting;
       phase_since_ = now;
       for (Drive& d : drives_) {
         mrqp_fw_frame f;
-        (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, d.cfg.node, &f);
+        d.nmt.start_remote(now, &f);
         set_pending(d, f);
-        d.nmt_commanded = now;
       }
     }
   }
@@ -298,15 +288,15 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
     if (d.faults.missed_cycles >= config_.feedback_missing_cycles) {
       flags |= fault::kFeedbackMissing;
     }
-    if (d.hb_monitor && now - d.last_heartbeat > config_.heartbeat_timeout) {
+    if (d.heartbeat.process(now)) {
       flags |= fault::kHeartbeatLost;
     }
     if (d.faults.emcy_code != 0u) {
       flags |= fault::kEmcy;
     }
     if (phase_ == ArmPhase::Running) {
-      if (d.hb_monitor && d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
-          d.last_heartbeat > d.nmt_commanded + nmt_grace) {
+      if (d.heartbeat.monitoring() && d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
+          d.heartbeat.last() > d.nmt.commanded() + nmt_grace) {
         flags |= fault::kStateMismatch;
       }
       if (d.state.valid) {
@@ -347,8 +337,8 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
     if (d.has_pending && send(d.cfg.bus, &d, d.pending)) {
       d.has_pending = false;
       ++count;
-      if (d.sdo_busy) {
-        d.sdo_sent = now;
+      if (d.sdo.busy()) {
+        d.sdo.sent(now);
       }
     }
   }
@@ -356,21 +346,14 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
   switch (phase_) {
   case ArmPhase::Configuring:
     for (Drive& d : drives_) {
-      if (d.configured || d.sdo_busy || d.has_pending || d.write_step >= d.writes.size()) {
+      if (d.sdo.done() || d.sdo.busy() || d.has_pending) {
         continue;
       }
-      const SdoWrite& w = d.writes[d.write_step];
-      for (unsigned k = 0; k < 4; ++k) {
-        d.sdo_data[k] = static_cast<std::uint8_t>((w.value >> (8u * k)) & 0xFFu);
-      }
       mrqp_fw_frame out;
-      if (mrqp_fw_sdo_client_start_download(&d.sdo, d.cfg.node, w.index, w.subindex, d.sdo_data.data(), w.size,
-                                            &out) != MRQP_FW_SDO_STEP_SEND) {
+      if (d.sdo.process(now, true, &out) != SdoWriteSequence::Step::Send) {
         fail_boot(d, fault::kBootFailed);
         continue;
       }
-      d.sdo_busy = true;
-      d.sdo_sent = now;
       if (send(d.cfg.bus, &d, out)) {
         ++count;
       } else {
@@ -436,11 +419,8 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
         }
       }
       if (config_.produce_sync) {
-        if (config_.sync_counter_overflow >= 2u) {
-          slot.sync_counter = mrqp_fw_sync_counter_next(slot.sync_counter, config_.sync_counter_overflow);
-        }
         mrqp_fw_frame f;
-        (void)mrqp_fw_sync_pack(config_.sync_counter_overflow >= 2u ? slot.sync_counter : 0u, &f);
+        slot.sync.process(now, &f);
         if (send(s, nullptr, f)) {
           ++count;
         }
@@ -456,17 +436,12 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
     break;
   }
 
-  if (config_.master_node != 0u && phase_ != ArmPhase::Idle && now >= next_master_heartbeat_) {
-    mrqp_fw_frame f;
-    (void)mrqp_fw_heartbeat_pack(config_.master_node, MRQP_FW_NMT_STATE_OPERATIONAL, &f);
+  mrqp_fw_frame hb;
+  if (phase_ != ArmPhase::Idle && master_heartbeat_.process(now, &hb)) {
     for (std::size_t s = 0; s < buses_.size(); ++s) {
-      if (buses_[s].has_drives && send(s, nullptr, f)) {
+      if (buses_[s].has_drives && send(s, nullptr, hb)) {
         ++count;
       }
-    }
-    const TimeNs period = milliseconds(config_.master_heartbeat_ms > 0 ? config_.master_heartbeat_ms : 1);
-    while (next_master_heartbeat_ <= now) {
-      next_master_heartbeat_ += period;
     }
   }
   return count;
@@ -474,41 +449,29 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
 
 Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept
 {
-  if (!d.sdo_busy) {
-    ++d.faults.corrupt_frames;
-    d.events |= fault::kCorruptFrame;
-    return Claim::Rejected;
-  }
   mrqp_fw_frame out;
-  const mrqp_fw_sdo_step step = mrqp_fw_sdo_client_on_frame(&d.sdo, &f, &out);
-  const SdoWrite& w = d.writes[d.write_step];
-  switch (step) {
-  case MRQP_FW_SDO_STEP_DONE:
-    d.sdo_busy = false;
-    ++d.write_step;
-    d.configured = d.write_step >= d.writes.size();
+  switch (d.sdo.on_frame(f, &out)) {
+  case SdoWriteSequence::Step::Done:
     return Claim::Accepted;
-  case MRQP_FW_SDO_STEP_SEND:
+  case SdoWriteSequence::Step::Send:
     set_pending(d, out);
     return Claim::Accepted;
-  case MRQP_FW_SDO_STEP_ABORTED:
-    d.sdo_busy = false;
-    d.faults.sdo_abort_code = d.sdo.abort_code;
-    d.faults.sdo_index = w.index;
-    d.faults.sdo_subindex = w.subindex;
+  case SdoWriteSequence::Step::Failed:
+    d.faults.sdo_abort_code = d.sdo.abort_code();
+    d.faults.sdo_index = d.sdo.current().index;
+    d.faults.sdo_subindex = d.sdo.current().subindex;
     fail_boot(d, fault::kBootFailed);
     return Claim::Accepted;
-  case MRQP_FW_SDO_STEP_ABORT_SEND:
-    d.sdo_busy = false;
+  case SdoWriteSequence::Step::FailedSend:
     set_pending(d, out);
-    d.faults.sdo_abort_code = d.sdo.abort_code;
-    d.faults.sdo_index = w.index;
-    d.faults.sdo_subindex = w.subindex;
+    d.faults.sdo_abort_code = d.sdo.abort_code();
+    d.faults.sdo_index = d.sdo.current().index;
+    d.faults.sdo_subindex = d.sdo.current().subindex;
     ++d.faults.corrupt_frames;
     fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
     return Claim::Rejected;
-  case MRQP_FW_SDO_STEP_IGNORED:
-  case MRQP_FW_SDO_STEP_ERROR:
+  case SdoWriteSequence::Step::Idle:
+  case SdoWriteSequence::Step::Unexpected:
     break;
   }
   ++d.faults.corrupt_frames;
@@ -594,11 +557,10 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
       break;
     }
     d.state.nmt_state = static_cast<std::uint8_t>(st);
-    d.last_heartbeat = t;
-    d.hb_monitor = config_.producer_heartbeat_ms > 0u;
+    d.heartbeat.on_heartbeat(st, t);
     if (st == MRQP_FW_NMT_STATE_BOOTUP) {
       if (phase_ == ArmPhase::Resetting) {
-        d.booted = true;
+        (void)d.nmt.on_boot_up(t);
       } else if (phase_ != ArmPhase::Idle && phase_ != ArmPhase::Failed) {
         d.events |= fault::kStateMismatch;  // the drive rebooted on its own
       }

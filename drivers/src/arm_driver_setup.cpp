@@ -10,11 +10,12 @@
 namespace mrqp::drivers {
 
 
-void ArmDriver::build_writes(Drive& d) const
+std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
 {
-  const unsigned n = d.cfg.node;
-  auto w = [&d](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value) {
-    d.writes.push_back(SdoWrite{index, sub, size, value});
+  const unsigned n = drive.node;
+  std::vector<SdoWrite> writes;
+  auto w = [&writes](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value) {
+    writes.push_back(SdoWrite{index, sub, size, value});
   };
   constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
   w(MRQP_FW_OBJ_PRODUCER_HEARTBEAT, 0, 2, config_.producer_heartbeat_ms);
@@ -58,7 +59,8 @@ void ArmDriver::build_writes(Drive& d) const
   // TPDO3 and TPDO4 would load the bus with frames nobody reads.
   w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 2u), 1, 4, kPdoInvalid | mrqp_fw_cob_tpdo(3, n));
   w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 3u), 1, 4, kPdoInvalid | mrqp_fw_cob_tpdo(4, n));
-  w(MRQP_FW_OBJ_MODES_OF_OPERATION, 0, 1, static_cast<std::uint8_t>(d.cfg.mode));
+  w(MRQP_FW_OBJ_MODES_OF_OPERATION, 0, 1, static_cast<std::uint8_t>(drive.mode));
+  return writes;
 }
 
 std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buses, const ArmConfig& config,
@@ -145,15 +147,18 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
   p->buses_.resize(buses.size());
   for (BusSlot& b : p->buses_) {
     b.node_to_drive.fill(-1);
+    b.sync.init(config.sync_counter_overflow);
   }
+  p->master_heartbeat_.init(config.master_node, config.master_heartbeat_ms);
   p->drives_.resize(config.drives.size());
   for (std::size_t i = 0; i < config.drives.size(); ++i) {
     Drive& d = p->drives_[i];
     d.cfg = config.drives[i];
     p->buses_[d.cfg.bus].node_to_drive[d.cfg.node] = static_cast<std::int16_t>(i);
     p->buses_[d.cfg.bus].has_drives = true;
-    mrqp_fw_sdo_client_reset(&d.sdo);
-    p->build_writes(d);
+    d.nmt.init(d.cfg.node, config.reset, config.boot_timeout);
+    d.sdo.init(d.cfg.node, p->build_writes(d.cfg), config.sdo_timeout);
+    d.heartbeat.init(config.producer_heartbeat_ms > 0u, config.heartbeat_timeout);
   }
   if (const std::string why = p->routers_.attach(buses, *p, p->drives_.size()); !why.empty()) {
     return fail(why);

@@ -22,7 +22,11 @@
 //   left there (target Switch on disabled) until the next request_enable(), which resets it.
 //
 // The control cycle calls, in order: BusRouter::poll(now) for each bus, update(now) (faults and
-// state machine), set_position()/set_torque(), transmit(now). Everything after create() is
+// state machine), set_position()/set_torque(), transmit(now).
+// The CANopen master's protocol objects are units of their own (drivers/canopen, one per file):
+// NmtBoot (reset and boot-up wait, NMT start) and HeartbeatConsumer per drive, SdoWriteSequence
+// (the configuration writes) per drive, SyncProducer per bus, HeartbeatProducer (the master's
+// heartbeat); ArmDriver sequences them and adds the CiA 402 part. Everything after create() is
 // real-time safe: no allocation, no lock, no exception, no stdio; failures are return values and
 // fault flags. Until a drive is enabled and given a setpoint, its RPDO holds its measured position
 // (raw increments) with zero torque.
@@ -42,6 +46,11 @@
 
 #include "mrqp/drivers/bus_budget.hpp"
 #include "mrqp/drivers/bus_router.hpp"
+#include "mrqp/drivers/canopen/heartbeat_consumer.hpp"
+#include "mrqp/drivers/canopen/heartbeat_producer.hpp"
+#include "mrqp/drivers/canopen/nmt_boot.hpp"
+#include "mrqp/drivers/canopen/sdo_write_sequence.hpp"
+#include "mrqp/drivers/canopen/sync_producer.hpp"
 #include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
 #include "mrqp/drivers/router_attachment.hpp"
@@ -50,15 +59,8 @@
 #include "mrqp/firmware_if/arm_scale.h"
 #include "mrqp/firmware_if/cia402.h"
 #include "mrqp/firmware_if/frame.h"
-#include "mrqp/firmware_if/sdo_client.h"
 
 namespace mrqp::drivers {
-
-enum class NmtReset : std::uint8_t {
-  Node = 0,       ///< NMT reset node (0x81): application reset, wait for boot-up
-  Communication,  ///< NMT reset communication (0x82), wait for boot-up
-  None            ///< NMT enter pre-operational (0x80), no reset, no wait
-};
 
 struct ArmDriveConfig {
   std::size_t bus = 0;      ///< index into the routers given to ArmDriver::create
@@ -161,30 +163,16 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
-  struct SdoWrite {
-    std::uint16_t index;
-    std::uint8_t subindex;
-    std::uint8_t size;
-    std::uint32_t value;
-  };
   struct Drive {
     ArmDriveConfig cfg;
     ArmDriveState state;
     DeviceFaults faults;
     std::uint32_t events = 0;            ///< flags raised since the previous update
-    std::vector<SdoWrite> writes;        ///< boot configuration
-    std::size_t write_step = 0;
-    mrqp_fw_sdo_client sdo{};
-    std::array<std::uint8_t, 4> sdo_data{};
-    bool sdo_busy = false;
-    TimeNs sdo_sent = 0;
+    NmtBoot nmt;                         ///< reset, boot-up wait, NMT start
+    SdoWriteSequence sdo;                ///< the boot configuration
+    HeartbeatConsumer heartbeat;
     mrqp_fw_frame pending{};             ///< one-shot frame waiting for the queue (NMT, SDO)
     bool has_pending = false;
-    bool booted = false;
-    bool configured = false;
-    bool hb_monitor = false;
-    TimeNs last_heartbeat = 0;
-    TimeNs nmt_commanded = 0;            ///< when the expected NMT state was commanded
     mrqp_fw_cia402_state target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
     TimeNs target_since = 0;
     bool target_timed_out = false;
@@ -201,12 +189,12 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   struct BusSlot {
     std::array<std::int16_t, 128> node_to_drive{};
     bool cyclic_sent = false;            ///< cyclic traffic (RPDOs, SYNC) has started
-    std::uint8_t sync_counter = 0;
+    SyncProducer sync;
     bool has_drives = false;
   };
 
   ArmDriver() = default;
-  void build_writes(Drive& d) const;
+  std::vector<SdoWrite> build_writes(const ArmDriveConfig& drive) const;
   bool send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept;
   void set_pending(Drive& d, const mrqp_fw_frame& f) noexcept;
   void fail_boot(Drive& d, std::uint32_t flags) noexcept;
@@ -220,8 +208,7 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   std::vector<BusSlot> buses_;
   ArmPhase phase_ = ArmPhase::Idle;
   TimeNs phase_since_ = 0;
-  bool reset_sent_ = false;
-  TimeNs next_master_heartbeat_ = 0;
+  HeartbeatProducer master_heartbeat_;
   RouterAttachment routers_;
 };
 

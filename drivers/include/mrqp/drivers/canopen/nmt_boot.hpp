@@ -1,0 +1,54 @@
+// mrqp drivers -- CANopen master, NMT: one node's boot (the reset command and the wait for its
+// boot-up message) and the NMT state the master commanded.
+//
+// begin() writes the command that starts a boot (reset node 0x81, reset communication 0x82, or
+// enter pre-operational 0x80 without a reset and without a wait); the caller sends it. The node
+// has booted when its boot-up message (heartbeat state 0x00) arrives while it is awaited.
+// start_remote() writes NMT start (0x01) and remembers when the node was told to be operational.
+// process(now) reports a boot that has not completed within the boot timeout.
+// Everything but the frames' transport; real-time safe, no allocation.
+#pragma once
+
+#include <cstdint>
+
+#include "mrqp/drivers/time.hpp"
+#include "mrqp/firmware_if/frame.h"
+
+namespace mrqp::drivers {
+
+enum class NmtReset : std::uint8_t {
+  Node = 0,       ///< NMT reset node (0x81): application reset, wait for boot-up
+  Communication,  ///< NMT reset communication (0x82), wait for boot-up
+  None            ///< NMT enter pre-operational (0x80), no reset, no wait
+};
+
+class NmtBoot {
+ public:
+  void init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexcept;
+
+  /// Starts a boot at `now`: the NMT frame to send in `out`.
+  void begin(TimeNs now, mrqp_fw_frame* out) noexcept;
+  /// NMT start remote node: the frame in `out`; the node is expected operational from `now`.
+  void start_remote(TimeNs now, mrqp_fw_frame* out) noexcept;
+  /// A boot-up message of the node received at `t`. True if it answers the boot command (the
+  /// node is booted).
+  bool on_boot_up(TimeNs t) noexcept;
+  /// True when the boot has not completed within the boot timeout of begin().
+  bool process(TimeNs now) const noexcept;
+
+  bool booted() const noexcept { return booted_; }
+  bool waiting() const noexcept { return !booted_ && begun_; }
+  /// When the node's current NMT state was commanded (begin() or start_remote()).
+  TimeNs commanded() const noexcept { return commanded_; }
+  std::uint8_t node() const noexcept { return node_; }
+
+ private:
+  std::uint8_t node_ = 1;
+  NmtReset reset_ = NmtReset::Node;
+  TimeNs boot_timeout_ = 0;
+  TimeNs commanded_ = 0;
+  bool begun_ = false;
+  bool booted_ = false;
+};
+
+}  // namespace mrqp::drivers

@@ -1,0 +1,54 @@
+// mrqp drivers -- CANopen master, NMT boot of one node (see canopen/nmt_boot.hpp).
+#include "mrqp/drivers/canopen/nmt_boot.hpp"
+
+#include "mrqp/firmware_if/nmt.h"
+
+namespace mrqp::drivers {
+
+namespace {
+mrqp_fw_nmt_cmd boot_command(NmtReset reset) noexcept
+{
+  return reset == NmtReset::Node ? MRQP_FW_NMT_RESET_NODE
+         : reset == NmtReset::Communication ? MRQP_FW_NMT_RESET_COMM
+                                            : MRQP_FW_NMT_ENTER_PREOP;
+}
+}  // namespace
+
+void NmtBoot::init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexcept
+{
+  node_ = node;
+  reset_ = reset;
+  boot_timeout_ = boot_timeout;
+  begun_ = false;
+  booted_ = false;
+}
+
+void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept
+{
+  begun_ = true;
+  booted_ = reset_ == NmtReset::None;
+  commanded_ = now;
+  (void)mrqp_fw_nmt_pack(boot_command(reset_), node_, out);
+}
+
+void NmtBoot::start_remote(TimeNs now, mrqp_fw_frame* out) noexcept
+{
+  commanded_ = now;
+  (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, node_, out);
+}
+
+bool NmtBoot::on_boot_up(TimeNs) noexcept
+{
+  if (!waiting()) {
+    return false;
+  }
+  booted_ = true;
+  return true;
+}
+
+bool NmtBoot::process(TimeNs now) const noexcept
+{
+  return waiting() && now - commanded_ > boot_timeout_;
+}
+
+}  // namespace mrqp::drivers
