@@ -33,6 +33,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev
   gnuplot-nox
   can-utils
+  libmujoco-dev libegl-dev libegl-mesa0 libgl-dev libpng-dev ffmpeg
 )
 if [ "${MRQP_EXTRA_PACKAGES:-}" != "" ]; then
   # shellcheck disable=SC2206

@@ -1,0 +1,204 @@
+// The `plant:` section of a scene file (docs/mujoco.md, "The plant section").
+#include "sim/plant_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include "scene/yaml_reader.hpp"
+
+namespace mrqp::sim {
+
+using scene::Bound;
+using scene::Map;
+using scene::Reader;
+
+namespace {
+
+ContactParams readContact(const Reader& r, const YAML::Node& n, const std::string& path,
+                          const ContactParams& defaults, double timestep) {
+  const Map m(r, n, path, {"friction", "timeconst", "dampratio"});
+  ContactParams p;
+  p.friction = m.number("friction", Bound::NonNegative, defaults.friction);
+  p.timeconst = m.number("timeconst", Bound::Positive, defaults.timeconst);
+  p.dampratio = m.number("dampratio", Bound::Positive, defaults.dampratio);
+  if (p.timeconst < 2.0 * timestep) {
+    const YAML::Node* at = m.find("timeconst");
+    r.fail(at != nullptr ? *at : n, m.at("timeconst"),
+           "must be at least two time steps (" + scene::formatNumber(2.0 * timestep) +
+               " s), or the contact is stiffer than the integrator can resolve");
+  }
+  return p;
+}
+
+NoiseSpec readNoise(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"stddev", "bias"});
+  return NoiseSpec{m.number("stddev", Bound::NonNegative, 0.0), m.number("bias", Bound::Any, 0.0)};
+}
+
+scene::PoseSpec readPose(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"xyz", "rpy"});
+  scene::PoseSpec p;
+  p.xyz = m.vec3("xyz", Eigen::Vector3d::Zero());
+  p.rpy = m.vec3("rpy", Eigen::Vector3d::Zero());
+  return p;
+}
+
+GeomSpec readGeom(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"entity", "link", "type", "size", "pose"});
+  GeomSpec g;
+  g.source = m.source();
+  g.entity = m.name("entity");
+  if (m.has("link")) {
+    g.link = m.name("link");
+  }
+  const std::string type = m.name("type");
+  int count = 0;
+  if (type == "box") {
+    g.type = GeomSpec::Type::Box;
+    count = 3;
+  } else if (type == "sphere") {
+    g.type = GeomSpec::Type::Sphere;
+    count = 1;
+  } else if (type == "cylinder") {
+    g.type = GeomSpec::Type::Cylinder;
+    count = 2;
+  } else if (type == "capsule") {
+    g.type = GeomSpec::Type::Capsule;
+    count = 2;
+  } else {
+    r.fail(m.require("type"), m.at("type"),
+           "expected box, sphere, cylinder or capsule, got \"" + type + "\"");
+  }
+  const YAML::Node& size = m.require("size");
+  const Eigen::VectorXd s = r.numbers(size, m.at("size"), count);
+  for (int i = 0; i < count; ++i) {
+    if (!(s(i) > 0.0)) {
+      r.fail(size, scene::item(m.at("size"), static_cast<std::size_t>(i)),
+             "expected a number > 0, got " + scene::formatNumber(s(i)));
+    }
+    g.size(i) = s(i);
+  }
+  if (const YAML::Node* p = m.find("pose")) {
+    g.pose = readPose(r, *p, m.at("pose"));
+  }
+  return g;
+}
+
+}  // namespace
+
+PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
+  PlantSpec s;
+  if (node == nullptr) {
+    return s;
+  }
+  const std::string path = "plant";
+  const Map m(r, *node, path,
+              {"simulator", "timestep", "seed", "contact", "pairs", "geoms", "grasps", "noise",
+               "package_path"});
+  s.present = true;
+  s.source = m.source();
+  s.simulator = "mujoco";
+  if (m.has("simulator")) {
+    s.simulator = m.name("simulator");
+    if (s.simulator != "mujoco" && s.simulator != "ideal") {
+      r.fail(m.require("simulator"), m.at("simulator"),
+             "expected mujoco or ideal, got \"" + s.simulator + "\"");
+    }
+  }
+  s.timestep = m.number("timestep", Bound::Positive, s.timestep);
+  if (s.timestep > 0.01) {
+    r.fail(m.require("timestep"), m.at("timestep"),
+           "expected at most 0.01 s, got " + scene::formatNumber(s.timestep));
+  }
+  s.seed = static_cast<std::uint64_t>(m.integer("seed", 0, INT_MAX, 1));
+  const ContactParams defaults;
+  if (const YAML::Node* c = m.find("contact")) {
+    s.contact = readContact(r, *c, m.at("contact"), defaults, s.timestep);
+  } else {
+    s.contact = readContact(r, YAML::Node(YAML::NodeType::Map), m.at("contact"), defaults,
+                            s.timestep);
+  }
+  if (const YAML::Node* p = m.find("pairs")) {
+    const std::vector<YAML::Node> items = r.list(*p, m.at("pairs"));
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const std::string ip = scene::item(m.at("pairs"), i);
+      const Map pm(r, items[i], ip, {"between", "friction", "timeconst", "dampratio"});
+      PairSpec pair;
+      pair.source = pm.source();
+      const std::vector<std::string> between = r.names(pm.require("between"), pm.at("between"));
+      if (between.size() != 2) {
+        r.fail(pm.require("between"), pm.at("between"),
+               "expected two entity names (or ground), got a list of " +
+                   std::to_string(between.size()));
+      }
+      pair.a = between[0];
+      pair.b = between[1];
+      // The pair's own numbers over the section defaults: read it as a contact map without
+      // the key "between".
+      YAML::Node rest(YAML::NodeType::Map);
+      for (const scene::Entry& e : pm.entries()) {
+        if (e.key != "between") {
+          rest[e.key] = e.value;
+        }
+      }
+      pair.params = readContact(r, rest.size() > 0 ? rest : YAML::Node(YAML::NodeType::Map), ip,
+                                s.contact, s.timestep);
+      for (const PairSpec& other : s.pairs) {
+        if ((other.a == pair.a && other.b == pair.b) || (other.a == pair.b && other.b == pair.a)) {
+          r.fail(items[i], ip, "pair " + pair.a + " / " + pair.b + " is listed twice (first at line " +
+                                   std::to_string(other.source.line) + ")");
+        }
+      }
+      s.pairs.push_back(pair);
+    }
+  }
+  if (const YAML::Node* g = m.find("geoms")) {
+    const std::vector<YAML::Node> items = r.list(*g, m.at("geoms"));
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      s.geoms.push_back(readGeom(r, items[i], scene::item(m.at("geoms"), i)));
+    }
+  }
+  if (const YAML::Node* g = m.find("grasps")) {
+    s.grasps = r.names(*g, m.at("grasps"));
+  }
+  if (const YAML::Node* n = m.find("noise")) {
+    const Map nm(r, *n, m.at("noise"),
+                 {"joint_position", "joint_velocity", "joint_torque", "force", "torque", "gyro",
+                  "accelerometer"});
+    const auto read = [&](const char* key, NoiseSpec& out) {
+      if (const YAML::Node* v = nm.find(key)) {
+        out = readNoise(r, *v, nm.at(key));
+      }
+    };
+    read("joint_position", s.noise.joint_position);
+    read("joint_velocity", s.noise.joint_velocity);
+    read("joint_torque", s.noise.joint_torque);
+    read("force", s.noise.force);
+    read("torque", s.noise.torque);
+    read("gyro", s.noise.gyro);
+    read("accelerometer", s.noise.accelerometer);
+  }
+  if (const YAML::Node* p = m.find("package_path")) {
+    s.package_path = r.names(*p, m.at("package_path"));
+  }
+  return s;
+}
+
+PlantSpec loadPlantSpecString(const std::string& text, const std::string& file_name_for_messages) {
+  const Reader r(file_name_for_messages);
+  const YAML::Node root = scene::parseYamlDocument(text, file_name_for_messages);
+  if (!root.IsMap()) {
+    return readPlantSection(r, nullptr);
+  }
+  try {
+    const YAML::Node plant = root["plant"];
+    return plant ? readPlantSection(r, &plant) : readPlantSection(r, nullptr);
+  } catch (const YAML::Exception& e) {
+    scene::yamlError(file_name_for_messages, e);
+  }
+}
+
+PlantSpec loadPlantSpec(const std::string& path) {
+  return loadPlantSpecString(scene::readTextFile(path), path);
+}
+
+}  // namespace mrqp::sim

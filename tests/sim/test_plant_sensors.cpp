@@ -1,0 +1,217 @@
+// The MuJoCo plant's sensors: a wrist force/torque sensor of a fixed arm holding a load (sign,
+// frame and moment against the statics of the distal bodies), an IMU at rest and in free fall,
+// and the plant section's reader and its errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "scene/scene_yaml.hpp"
+#include "sim/sensor_noise.hpp"
+#include "sim_scenes.hpp"
+
+using mrqp::sim::testing::makePlant;
+
+namespace {
+
+/// Holds every joint of `entity` where it is, with stiff servos.
+void holdAll(mrqp::sim::MujocoPlant& plant, const std::string& entity) {
+  const int e = plant.entityHandle(entity);
+  Eigen::VectorXd q(plant.entityNq(e)), v(plant.entityNv(e));
+  plant.entityState(e, q, v);
+  const std::unique_ptr<mrqp::problem::Entity> model =
+      mrqp::sim::testing::registry().make("panda", entity);
+  for (int k = 0; k < model->nv(); ++k) {
+    mrqp::loop::ServoCommand c;
+    c.enabled = true;
+    c.position = q(k);
+    c.kp = 3000.0;
+    c.kd = 150.0;
+    plant.setServo(plant.jointHandle(entity, model->jointName(k)), c);
+  }
+}
+
+/// The wrench, in `frame`'s axes, that the weight of the bodies of the subtree at `body` (and
+/// `extra_mass` at `extra_com`) exerts about the frame origin: the statics of the distal side.
+mrqp::loop::Vector6d distalWeight(const mjModel* m, const mjData* d, int body, double extra_mass,
+                                  const Eigen::Vector3d& extra_com) {
+  double mass = extra_mass;
+  Eigen::Vector3d moment_sum = extra_mass * extra_com;
+  for (int b = 1; b < m->nbody; ++b) {
+    int a = b;
+    while (a > 0 && a != body) a = m->body_parentid[a];
+    if (a != body) continue;
+    mass += m->body_mass[b];
+    moment_sum += m->body_mass[b] * Eigen::Vector3d(d->xipos[3 * b], d->xipos[3 * b + 1], d->xipos[3 * b + 2]);
+  }
+  const Eigen::Vector3d com = moment_sum / mass;
+  const Eigen::Vector3d f(0, 0, -9.81 * mass);
+  const Eigen::Vector3d o(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]);
+  Eigen::Matrix3d R;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) R(r, c) = d->xmat[9 * body + 3 * r + c];
+  mrqp::loop::Vector6d w;
+  w.head<3>() = R.transpose() * f;
+  w.tail<3>() = R.transpose() * (com - o).cross(f);
+  return w;
+}
+
+const char* kArm = R"(
+entities:
+  - name: panda
+    model: panda
+    pose: {xyz: [0, 0, 0.5], rpy: [0, 0, 0.4]}
+    q: {panda_joint2: -0.3, panda_joint4: -2.2, panda_joint6: 2.0, panda_joint7: 0.785,
+        panda_finger_joint1: 0.02}
+)";
+
+}  // namespace
+
+TEST_CASE("MuJoCo plant: a wrist sensor of a held arm reads the weight of the hand", "[sim]") {
+  auto plant = makePlant(std::string(kArm) + "plant: {timestep: 0.0005}\n");
+  holdAll(*plant, "panda");
+  for (int i = 0; i < 1500; ++i) plant->step(0.001);
+  const int frame = plant->frameHandle("panda", "panda_hand");
+  REQUIRE(frame >= 0);
+  const mrqp::loop::Vector6d w = plant->sensorWrench(frame);
+  const mrqp::loop::Vector6d expected = distalWeight(plant->model(), plant->data(), frame, 0.0, Eigen::Vector3d::Zero());
+  INFO("measured " << w.transpose() << "\nexpected " << expected.transpose());
+  CHECK((w.head<3>() - expected.head<3>()).norm() < 1e-3 * expected.head<3>().norm() + 1e-6);
+  CHECK((w.tail<3>() - expected.tail<3>()).norm() < 1e-4);
+  // Sign: the hand pulls its proximal side down, in world axes.
+  const Eigen::Vector3d f_world = plant->framePose(frame).linear() * w.head<3>();
+  CHECK(f_world.z() < 0.0);
+}
+
+TEST_CASE("MuJoCo plant: a grasped load adds its weight at the wrist (weld forces)", "[sim]") {
+  // A 2 kg box held 0.12 m beyond the hand frame: a grasp of the plant section (a weld).
+  const std::string yaml = std::string(kArm) + R"(
+  - name: load
+    model: rigid_object
+    mass: 2.0
+    inertia: [0.004, 0.004, 0.004]
+    pose: {xyz: [0, 0, 0]}
+contacts:
+  - name: hold
+    entity: load
+    frame: load
+    other: {entity: panda, frame: panda_hand}
+    points: [[0, 0, 0]]
+plant:
+  timestep: 0.0005
+  geoms: [{entity: load, type: box, size: [0.03, 0.03, 0.03]}]
+  grasps: [hold]
+)";
+  // Place the load 0.12 m along the hand's z: first find the hand's pose.
+  mrqp::scene::SceneSpec s = mrqp::scene::loadSceneString(yaml, "test.yaml");
+  {
+    auto probe = makePlant(yaml);
+    const Eigen::Isometry3d hand = probe->framePose(probe->frameHandle("panda", "panda_hand"));
+    const Eigen::Vector3d p = hand * Eigen::Vector3d(0, 0, 0.12);
+    s.entities[1].pose.xyz = p;
+    s.entities[1].pose.rpy = hand.linear().eulerAngles(2, 1, 0).reverse();
+  }
+  const mrqp::sim::PlantSpec ps = mrqp::sim::loadPlantSpecString(yaml, "test.yaml");
+  mrqp::sim::MujocoPlant plant(s, ps, &mrqp::sim::testing::registry());
+  holdAll(plant, "panda");
+  const int load = plant.frameHandle("load", "load");
+  const Eigen::Vector3d start = plant.framePose(load).translation();
+  for (int i = 0; i < 2000; ++i) plant.step(0.001);
+  const int frame = plant.frameHandle("panda", "panda_hand");
+  const Eigen::Isometry3d hand = plant.framePose(frame);
+  const Eigen::Vector3d load_at = plant.framePose(load).translation();
+  // The weld holds the load where it was relative to the hand.
+  CHECK((hand.inverse() * load_at - Eigen::Vector3d(0, 0, 0.12)).norm() < 2e-3);
+  CHECK((load_at - start).norm() < 0.05);
+  const mrqp::loop::Vector6d w = plant.sensorWrench(frame);
+  const mrqp::loop::Vector6d expected = distalWeight(plant.model(), plant.data(), frame, 2.0, load_at);
+  INFO("measured " << w.transpose() << "\nexpected " << expected.transpose());
+  CHECK((w.head<3>() - expected.head<3>()).norm() < 2e-3 * expected.head<3>().norm());
+  CHECK((w.tail<3>() - expected.tail<3>()).norm() < 2e-3 * expected.tail<3>().norm() + 1e-3);
+}
+
+TEST_CASE("MuJoCo plant: an IMU at rest reads −g in its axes and no rate", "[sim]") {
+  const char* yaml = R"(
+entities:
+  - name: door
+    model: door
+    pose: {xyz: [1, 0, 0], rpy: [0.3, -0.5, 0.8]}
+    actuation: none
+plant: {timestep: 0.001}
+)";
+  auto plant = makePlant(yaml);
+  const int base = plant->frameHandle("door", "base_link");
+  REQUIRE(base >= 0);
+  plant->step(0.001);
+  const mrqp::loop::ImuSample s = plant->imu(base);
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  CHECK((s.specific_force - R.transpose() * Eigen::Vector3d(0, 0, 9.81)).norm() < 1e-9);
+  CHECK(s.angular_velocity.norm() < 1e-12);
+  CHECK(s.orientation.angularDistance(Eigen::Quaterniond(R)) < 1e-9);
+}
+
+TEST_CASE("Plant section: values, defaults and errors", "[sim]") {
+  const std::string head = "entities: [{name: box, model: rigid_object}]\n";
+  SECTION("absent: the ideal plant") {
+    const mrqp::sim::PlantSpec p = mrqp::sim::loadPlantSpecString(head, "a.yaml");
+    CHECK_FALSE(p.present);
+    CHECK(p.simulator == "ideal");
+  }
+  SECTION("values") {
+    const mrqp::sim::PlantSpec p = mrqp::sim::loadPlantSpecString(head + R"(
+plant:
+  timestep: 0.001
+  seed: 42
+  contact: {friction: 0.6, timeconst: 0.01}
+  pairs: [{between: [box, ground], friction: 1.2}]
+  noise: {force: {stddev: 0.5, bias: 0.1}, gyro: {stddev: 0.001}}
+)", "a.yaml");
+    CHECK(p.simulator == "mujoco");
+    CHECK(p.timestep == 0.001);
+    CHECK(p.seed == 42);
+    CHECK(p.contact.friction == 0.6);
+    CHECK(p.contact.timeconst == 0.01);
+    REQUIRE(p.pairs.size() == 1);
+    CHECK(p.pairs[0].params.friction == 1.2);
+    CHECK(p.pairs[0].params.timeconst == 0.01);  // the section's default
+    CHECK(p.noise.force.stddev == 0.5);
+    CHECK(p.noise.force.bias == 0.1);
+    CHECK(p.noise.gyro.stddev == 0.001);
+  }
+  const auto error = [&](const std::string& plant) {
+    try {
+      mrqp::sim::loadPlantSpecString(head + plant, "a.yaml");
+    } catch (const mrqp::scene::SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error("plant: {timestep: -1}\n") == "a.yaml:2: plant.timestep: expected a number > 0, got -1");
+  CHECK(error("plant:\n  contact: {friction: 0.5, stiff: 3}\n") == "a.yaml:3: plant.contact.stiff: unknown key");
+  CHECK(error("plant: {simulator: bullet}\n") ==
+        "a.yaml:2: plant.simulator: expected mujoco or ideal, got \"bullet\"");
+  CHECK(error("plant:\n  geoms:\n    - {entity: box, type: cone, size: [1]}\n") ==
+        "a.yaml:4: plant.geoms[0].type: expected box, sphere, cylinder or capsule, got \"cone\"");
+  CHECK(error("plant:\n  contact: {timeconst: 0.0001}\n") ==
+        "a.yaml:3: plant.contact.timeconst: must be at least two time steps (0.001 s), or the "
+        "contact is stiffer than the integrator can resolve");
+}
+
+TEST_CASE("Sensor noise: bias and the spread of the noise", "[sim]") {
+  mrqp::sim::SensorNoiseSpec spec;
+  spec.force = {0.5, 0.2};
+  mrqp::sim::SensorNoise noise(spec, 3);
+  double sum = 0.0, sq = 0.0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const double x = noise.wrench(mrqp::loop::Vector6d::Zero())(0);
+    sum += x;
+    sq += x * x;
+  }
+  const double mean = sum / n, sd = std::sqrt(sq / n - mean * mean);
+  CHECK(mean == Approx(0.2).margin(4 * 0.5 / std::sqrt(n)));
+  CHECK(sd == Approx(0.5).epsilon(0.03));
+  CHECK(noise.jointPosition(1.25) == 1.25);  // no noise configured
+}
