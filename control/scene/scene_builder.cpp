@@ -2,15 +2,13 @@
 
 #include <Eigen/Geometry>
 
-#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-#include "problem/constraints/com_damper.hpp"
-#include "problem/constraints/joint_inequality.hpp"
 #include "problem/rigid_object.hpp"
 #include "scene/build_context.hpp"
+#include "scene/constraint_kind.hpp"
 #include "scene/task_kind.hpp"
 
 namespace mrqp::scene {
@@ -138,8 +136,12 @@ Scene buildScene(const SceneSpec& spec, const ModelRegistry& models) {
   ps.max_tasks = spec.settings.max_tasks;
   ps.max_contacts = spec.settings.max_contacts;
   ps.max_contact_generators = spec.settings.max_contact_generators;
-  ps.max_com_dampers = std::max<int>(1, static_cast<int>(spec.com_dampers.size()));
-  ps.max_joint_inequalities = std::max<int>(1, static_cast<int>(spec.joint_inequalities.size()));
+  ps.max_constraints = 0;
+  ps.max_constraint_rows = 0;
+  ps.max_constraint_equalities = 0;
+  for (const ConstraintKindEntry& k : constraintKinds()) {
+    k.reserve(spec, &ps.max_constraints, &ps.max_constraint_rows, &ps.max_constraint_equalities);
+  }
   ps.contact_stiffness = spec.settings.contact_stiffness;
   ps.contact_damping = spec.settings.contact_damping;
   ps.regularisation = spec.settings.regularisation;
@@ -186,32 +188,7 @@ Scene buildScene(const SceneSpec& spec, const ModelRegistry& models) {
     else scene.tasks[ts.name] = id;
   }
 
-  for (std::size_t i = 0; i < spec.com_dampers.size(); ++i) {
-    const ComDamperSpec& ds = spec.com_dampers[i];
-    const std::string field = "com_dampers[" + std::to_string(i) + "]";
-    const int entity = r.entity(ds.entity, ds.source, field + ".entity");
-    if (p.addConstraint(std::make_unique<problem::ComDamper>(entity, ds.interaction, ds.security, ds.damping)) < 0) {
-      fail(ds.source, field, p.lastError());
-    }
-  }
-  for (std::size_t i = 0; i < spec.joint_inequalities.size(); ++i) {
-    const JointInequalitySpec& js = spec.joint_inequalities[i];
-    const std::string field = "joint_inequalities[" + std::to_string(i) + "]";
-    if (js.terms.size() > static_cast<std::size_t>(problem::JointInequality::kMaxTerms)) {
-      fail(js.source, field + ".terms", "at most 4 terms");
-    }
-    std::array<problem::JointInequality::Term, problem::JointInequality::kMaxTerms> terms{};
-    for (std::size_t k = 0; k < js.terms.size(); ++k) {
-      const std::string tf = field + ".terms[" + std::to_string(k) + "]";
-      terms[k].entity = r.entity(js.terms[k].entity, js.source, tf + ".entity");
-      terms[k].joint = r.joint(terms[k].entity, js.terms[k].joint, js.source, tf + ".joint");
-      terms[k].coeff = js.terms[k].coeff;
-    }
-    const int id = p.addConstraint(std::make_unique<problem::JointInequality>(
-        terms.data(), static_cast<int>(js.terms.size()), js.upper, js.interaction, js.security, js.damping));
-    if (id < 0) fail(js.source, field, p.lastError());
-    scene.joint_inequalities[js.name] = id;
-  }
+  for (const ConstraintKindEntry& k : constraintKinds()) k.build(spec, r, p, &scene);
   for (std::size_t i = 0; i < spec.contacts.size(); ++i) {
     if (!spec.contacts[i].active) p.removeContact(scene.contacts[spec.contacts[i].name]);
   }

@@ -1,5 +1,6 @@
 // From a SceneSpec (names) to a ready MultiRobotProblem (indices): entities made from the model
-// registry and placed, contacts, tasks and dampers added. Every name is checked here; an error
+// registry and placed, contacts added, tasks and constraints built by their kinds' factories
+// (task_registry.cpp, constraint_registry.cpp) and added. Every name is checked here; an error
 // throws SceneError "FILE:LINE: FIELD: message" pointing at the element of the scene file.
 #pragma once
 
@@ -19,7 +20,8 @@ struct Scene {
   std::unique_ptr<problem::MultiRobotProblem> problem;
   std::map<std::string, int> contacts;  ///< contact name → id
   std::map<std::string, int> tasks;     ///< task name → id
-  std::map<std::string, int> joint_inequalities;
+  std::map<std::string, int> joint_inequalities;  ///< joint inequality name → constraint id
+  std::map<std::string, int> constraints;         ///< named constraints of every kind → id
 
   int contact(const std::string& name) const;  ///< throws std::out_of_range naming it
   int task(const std::string& name) const;

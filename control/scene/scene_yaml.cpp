@@ -2,6 +2,7 @@
 // dotted path of the offending key.
 #include "scene/scene_yaml.hpp"
 
+#include "scene/constraint_kind.hpp"
 #include "scene/task_kind.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -290,71 +291,6 @@ TaskSpec readTask(const Reader& r, const YAML::Node& n, const std::string& path)
   return t;
 }
 
-// ---- velocity dampers --------------------------------------------------------------------------
-
-/// interaction > security >= 0 (m or rad), damping > 0.
-void readDamperGains(const Map& m, double* interaction, double* security, double* damping) {
-  *security = m.number("security", Bound::NonNegative, *security);
-  *interaction = m.number("interaction", Bound::Any, *interaction);
-  if (!(*interaction > *security)) {
-    const Reader& r = m.reader();
-    if (const YAML::Node* n = m.find("interaction")) {
-      r.fail(*n, m.at("interaction"),
-             "expected a number > security (" + formatNumber(*security) + "), got " + describe(*n));
-    }
-    r.fail(m.require("security"), m.at("security"),
-           "expected a number < interaction (" + formatNumber(*interaction) + "), got " +
-               describe(m.require("security")));
-  }
-  *damping = m.number("damping", Bound::Positive, *damping);
-}
-
-ComDamperSpec readComDamper(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(r, n, path, {"entity", "interaction", "security", "damping"});
-  ComDamperSpec d;
-  d.source = m.source();
-  d.entity = m.name("entity");
-  readDamperGains(m, &d.interaction, &d.security, &d.damping);
-  return d;
-}
-
-JointInequalitySpec::Term readTerm(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(r, n, path, {"entity", "joint", "coeff"});
-  JointInequalitySpec::Term t;
-  t.entity = m.name("entity");
-  t.joint = m.name("joint");
-  t.coeff = m.number("coeff", Bound::Any, t.coeff);
-  return t;
-}
-
-JointInequalitySpec readJointInequality(const Reader& r, const YAML::Node& n,
-                                        const std::string& path) {
-  const Map m(r, n, path, {"name", "terms", "upper", "interaction", "security", "damping"});
-  JointInequalitySpec j;
-  j.source = m.source();
-  if (m.has("name")) {
-    j.name = m.name("name");
-  }
-  const YAML::Node& terms = m.require("terms");
-  const std::vector<YAML::Node> items = r.list(terms, m.at("terms"));
-  if (items.empty()) {
-    r.fail(terms, m.at("terms"), "expected at least one term");
-  }
-  for (std::size_t i = 0; i < items.size(); ++i) {
-    const JointInequalitySpec::Term t = readTerm(r, items[i], item(m.at("terms"), i));
-    for (const JointInequalitySpec::Term& u : j.terms) {
-      if (u.entity == t.entity && u.joint == t.joint) {
-        r.fail(items[i], item(m.at("terms"), i),
-               "joint '" + t.joint + "' of '" + t.entity + "' appears twice");
-      }
-    }
-    j.terms.push_back(t);
-  }
-  j.upper = r.number(m.require("upper"), m.at("upper"));
-  readDamperGains(m, &j.interaction, &j.security, &j.damping);
-  return j;
-}
-
 // ---- the file ----------------------------------------------------------------------------------
 
 YAML::Node fieldOf(const YAML::Node& map, const char* key) { return map[key]; }
@@ -382,14 +318,20 @@ std::vector<Spec> readList(const Reader& r, const Map& top, const char* key, Rea
   return out;
 }
 
+/// The top-level keys: the scene's own lists, each constraint kind's list, and the sections the
+/// controller loop reads (control/loop, docs/scenes.md), which are not the problem's.
+std::vector<std::string> topLevelKeys() {
+  std::vector<std::string> keys = {"settings", "entities", "contacts", "tasks"};
+  for (const ConstraintKindEntry& k : constraintKinds()) keys.emplace_back(k.key);
+  for (const char* loop : {"hardware", "plant", "timeline"}) keys.emplace_back(loop);
+  return keys;
+}
+
 SceneSpec readScene(const Reader& r, const YAML::Node& root) {
   if (!root.IsMap() && !root.IsNull()) {
     r.fail(root, "", "expected a map, got " + describe(root));
   }
-  const Map top(r, root, "",
-                {"settings", "entities", "contacts", "tasks", "com_dampers", "joint_inequalities",
-                 // read by the controller loop (control/loop, docs/scenes.md), not by the problem:
-                 "hardware", "plant", "timeline"});
+  const Map top(r, root, "", topLevelKeys());
   SceneSpec s;
   s.file = r.file();
   s.settings = readSettings(r, top.find("settings"));
@@ -401,11 +343,21 @@ SceneSpec readScene(const Reader& r, const YAML::Node& root) {
   s.entities = readList<EntitySpec>(r, top, "entities", readEntity, "name", "entity name", name);
   s.contacts = readList<ContactSpec>(r, top, "contacts", readContact, "name", "contact name", name);
   s.tasks = readList<TaskSpec>(r, top, "tasks", readTask, "name", "task name", name);
-  s.com_dampers = readList<ComDamperSpec>(r, top, "com_dampers", readComDamper, "entity",
-                                          "com_damper for entity",
-                                          [](const ComDamperSpec& d) { return d.entity; });
-  s.joint_inequalities = readList<JointInequalitySpec>(
-      r, top, "joint_inequalities", readJointInequality, "name", "joint inequality name", name);
+  for (const ConstraintKindEntry& k : constraintKinds()) {
+    const YAML::Node* n = top.find(k.key);
+    if (n == nullptr) {
+      continue;
+    }
+    UniqueNames seen(r, k.what);
+    const std::vector<YAML::Node> items = r.list(*n, k.key);
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const std::string path = item(k.key, i);
+      const std::string key = k.read(r, items[i], path, &s);
+      if (k.unique != nullptr && !key.empty()) {
+        seen.add(key, fieldOf(items[i], k.unique), child(path, k.unique));
+      }
+    }
+  }
   return s;
 }
 

@@ -258,13 +258,12 @@ class Map {
  public:
   Map(const Reader& r, const YAML::Node& n, std::string path, std::initializer_list<const char*> keys)
       : r_(r), node_(n), path_(std::move(path)), entries_(r.entries(n, path_)) {
-    for (const Entry& e : entries_) {
-      const bool known = std::any_of(keys.begin(), keys.end(),
-                                     [&](const char* k) { return e.key == k; });
-      if (!known) {
-        r_.fail(e.key_node, at(e.key), "unknown key");
-      }
-    }
+    checkKeys(keys.begin(), keys.end());
+  }
+  /// The same with the allowed keys assembled at run time (e.g. from a registry).
+  Map(const Reader& r, const YAML::Node& n, std::string path, const std::vector<std::string>& keys)
+      : r_(r), node_(n), path_(std::move(path)), entries_(r.entries(n, path_)) {
+    checkKeys(keys.begin(), keys.end());
   }
 
   const Reader& reader() const { return r_; }
@@ -326,6 +325,16 @@ class Map {
   }
 
  private:
+  template <class It>
+  void checkKeys(It first, It last) const {
+    for (const Entry& e : entries_) {
+      const bool known = std::any_of(first, last, [&](const auto& k) { return e.key == k; });
+      if (!known) {
+        r_.fail(e.key_node, at(e.key), "unknown key");
+      }
+    }
+  }
+
   const Reader& r_;
   YAML::Node node_;
   std::string path_;
