@@ -51,6 +51,13 @@ std::size_t BusRouter::poll(TimeNs now) noexcept
       stats_.last_error_flags |= rx.error.flags;
       continue;
     }
+    if (rx.own) {
+      ++stats_.echoes;
+      for (std::size_t i = 0; i < handler_count_; ++i) {
+        handlers_[i]->on_own_frame(*this, rx, now);
+      }
+      continue;
+    }
     ++stats_.frames;
     Claim claim = Claim::NotMine;
     for (std::size_t i = 0; i < handler_count_ && claim == Claim::NotMine; ++i) {

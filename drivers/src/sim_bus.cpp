@@ -542,6 +542,11 @@ void SimBus::finish_frame() noexcept
     }
     for (std::size_t i = 0; i < participant_count_; ++i) {
       SimNode& n = *nodes_[participants_[i]];
+      if (n.config_.echo_own) {
+        RxFrame echo = rx;
+        echo.own = true;
+        n.deliver(ReceiveResult::Frame, echo);
+      }
       if (n.listener_ != nullptr) {
         n.listener_->on_transmitted(n, current_.frame, end);
       }

@@ -217,6 +217,7 @@ ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept
   if (!out.has_timestamp) {
     out.timestamp = monotonic_now();
   }
+  out.own = (msg.msg_flags & MSG_CONFIRM) != 0;  // CAN_RAW_RECV_OWN_MSGS: this socket's own frame
   const bool is_fd = n == static_cast<ssize_t>(CANFD_MTU);
   if (!is_fd && n != static_cast<ssize_t>(CAN_MTU)) {
     last_errno_ = EIO;

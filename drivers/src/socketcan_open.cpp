@@ -46,6 +46,7 @@ void SocketCanBus::close() noexcept
   }
   fd_ = -1;
   fd_frames_ = false;
+  receive_own_ = false;
 }
 
 bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
@@ -150,6 +151,7 @@ bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
 
   fd_ = s;
   fd_frames_ = config.fd;
+  receive_own_ = config.receive_own;
   const std::size_t n = std::min(ifname.size(), sizeof(name_) - 1);
   std::memcpy(name_, ifname.c_str(), n);
   name_[n] = '\0';

@@ -17,9 +17,11 @@
 namespace drvtest {
 
 struct ArmRig {
-  /// drives[i] = {bus, node}. The master is node 0 of every bus.
+  /// drives[i] = {bus, node}. The master is node 0 of every bus; with `echo_own` it receives its
+  /// own frames (TX echo). `boot_delay`: the fake drives' power-on / reset -> boot-up time.
   ArmRig(const std::vector<std::pair<std::size_t, std::uint8_t>>& drives, mrqp::drivers::ArmConfig cfg,
-         std::size_t master_tx_queue = 64, std::vector<std::int32_t> initial_positions = {})
+         std::size_t master_tx_queue = 64, std::vector<std::int32_t> initial_positions = {}, bool echo_own = false,
+         mrqp::drivers::TimeNs boot_delay = 2000000)
   {
     using namespace mrqp::drivers;
     std::size_t nbus = 1;
@@ -34,6 +36,7 @@ struct ArmRig {
       mc.name = "master";
       mc.rx_queue = 2048;
       mc.tx_queue = master_tx_queue;
+      mc.echo_own = echo_own;
       masters.push_back(buses[b]->add_node(mc));
       routers.push_back(std::make_unique<BusRouter>(*masters[b]));
     }
@@ -41,6 +44,7 @@ struct ArmRig {
       FakeDriveOptions o;
       o.node = drives[i].second;
       o.initial_position = i < initial_positions.size() ? initial_positions[i] : 0;
+      o.boot_delay = boot_delay;
       SimNodeConfig nc;
       nc.name = "drive";
       fakes.push_back(std::make_unique<FakeCia402Drive>(*buses[drives[i].first]->add_node(nc), o));

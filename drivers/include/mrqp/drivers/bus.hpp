@@ -56,6 +56,7 @@ struct RxFrame {
   BusErrorEvent error{};    ///< valid for ReceiveResult::ErrorEvent
   TimeNs timestamp = 0;     ///< reception time on the caller's clock (see has_timestamp)
   bool has_timestamp = false;
+  bool own = false;         ///< a frame this bus itself sent, returned once it was on the wire (TX echo)
 };
 
 enum class SendResult : std::uint8_t {
@@ -106,6 +107,10 @@ class Bus {
   virtual bool fd_enabled() const noexcept = 0;
   /// A static name for messages (interface or node name).
   virtual const char* name() const noexcept = 0;
+  /// True if receive() also returns this bus's own frames once they were on the wire (RxFrame::own:
+  /// CAN_RAW_RECV_OWN_MSGS on SocketCAN, SimNodeConfig::echo_own on SimBus), in wire order with
+  /// the frames of the other nodes.
+  virtual bool echoes_own() const noexcept { return false; }
 };
 
 }  // namespace mrqp::drivers

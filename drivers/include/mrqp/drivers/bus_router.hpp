@@ -30,6 +30,14 @@ class FrameHandler {
  public:
   /// Called from BusRouter::poll for every data frame until a handler claims it.
   virtual Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept = 0;
+  /// Called from BusRouter::poll for each of the bus's own frames it returns (TX echo, see
+  /// Bus::echoes_own()), for every handler; never passed to on_frame, never counted as unknown.
+  virtual void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
+  {
+    (void)from;
+    (void)rx;
+    (void)now;
+  }
 
  protected:
   ~FrameHandler() = default;
@@ -40,6 +48,7 @@ struct RouterStats {
   std::uint64_t accepted = 0;
   std::uint64_t rejected = 0;      ///< claimed but malformed (corrupted), dropped
   std::uint64_t unknown = 0;       ///< claimed by nobody, dropped
+  std::uint64_t echoes = 0;        ///< own frames returned by the bus (TX echo), given to on_own_frame
   std::uint64_t error_events = 0;
   std::uint64_t receive_failures = 0;
   std::uint64_t polls_truncated = 0;  ///< polls that stopped at max_frames_per_poll

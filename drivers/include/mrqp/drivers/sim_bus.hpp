@@ -64,6 +64,7 @@ struct SimNodeConfig {
   bool error_events = true;       ///< deliver error events to receive() (SocketCAN's error filter)
   bool auto_recover = true;       ///< leave bus-off after 128 x 11 recessive bits
   bool one_shot = false;          ///< drop a frame after a failed attempt instead of retrying
+  bool echo_own = false;          ///< receive own frames once delivered (RxFrame::own), like CAN_RAW_RECV_OWN_MSGS
 };
 
 /// What happened to one transmission attempt on the wire.
@@ -124,6 +125,7 @@ class SimNode final : public Bus {
   BusStatus status() const noexcept override;
   bool fd_enabled() const noexcept override;
   const char* name() const noexcept override;
+  bool echoes_own() const noexcept override { return config_.echo_own; }
 
   /// Queues a frame that becomes ready for arbitration at `ready` (>= now).
   SendResult send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept;

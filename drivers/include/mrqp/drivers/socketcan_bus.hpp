@@ -56,6 +56,7 @@ class SocketCanBus final : public Bus {
   BusStatus status() const noexcept override { return status_; }
   bool fd_enabled() const noexcept override { return fd_frames_; }
   const char* name() const noexcept override { return name_; }
+  bool echoes_own() const noexcept override { return receive_own_; }
 
   /// errno of the last failed system call in send()/receive() (0 if none).
   int last_errno() const noexcept { return last_errno_; }
@@ -65,6 +66,7 @@ class SocketCanBus final : public Bus {
 
   int fd_ = -1;
   bool fd_frames_ = false;
+  bool receive_own_ = false;
   int last_errno_ = 0;
   std::uint32_t last_drop_count_ = 0;
   BusStatus status_{};

@@ -1,0 +1,105 @@
+// The boot-up race of the arm master's reset: a drive that powers up just before the master
+// resets it sends its power-up boot-up message right before (or while) the NMT reset goes out.
+// That boot-up does not answer the reset: the drive reboots on receiving the reset and sends a
+// second boot-up ~2 ms later. A master that takes the first one configures a rebooting drive
+// (SDO writes lost, the second boot-up seen as a reboot). The answer to the reset must come after
+// the reset was on the bus: after its TX echo (bus with echoes), or at least after the reset was
+// handed to the bus (bus without echoes).
+#include <catch2/catch.hpp>
+
+#include <mrqp/drivers/arm_driver.hpp>
+
+#include <string>
+#include <vector>
+
+#include "arm_rig.hpp"
+
+using namespace mrqp::drivers;
+
+namespace {
+
+/// Start times of the frames `text_prefix` on bus 0 of the rig ("701#00": boot-up of node 1).
+std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix)
+{
+  r.flush();
+  std::vector<TimeNs> out;
+  for (const WireEvent& e : r.logs[0]->events) {
+    if (e.outcome == WireOutcome::Delivered && drvtest::frame_str(e.frame).rfind(prefix, 0) == 0) {
+      out.push_back(e.start);
+    }
+  }
+  return out;
+}
+
+/// Cycles until Running / Failed; ORs every report's flags into *flags.
+void boot_through(drvtest::ArmRig& r, std::uint32_t* flags)
+{
+  for (int k = 0; k < 400 && r.arm->phase() != ArmPhase::Running && r.arm->phase() != ArmPhase::Failed; ++k) {
+    *flags |= r.cycle().flags;
+  }
+  for (int k = 0; k < 20; ++k) {
+    *flags |= r.cycle().flags;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("drivers: arm boot race: a power-up boot-up on the wire as the reset goes out (TX echo)",
+          "[drivers][arm][race][!shouldfail]")
+{
+  ArmConfig c;
+  c.cycle_period = milliseconds(1);
+  // The drive powers up at 0 and sends its boot-up at 2 ms; the master starts at 2 ms, after
+  // that cycle's poll: the boot-up is on the wire when the reset is queued, the reset follows it.
+  drvtest::ArmRig r({{0, 1}}, c, 64, {}, true);
+  REQUIRE(r.arm != nullptr);
+  r.cycle();
+  r.cycle();
+  r.hook = [](drvtest::ArmRig& rr) {
+    rr.arm->start(rr.t);
+    rr.hook = nullptr;
+  };
+  r.cycle();
+  const std::vector<TimeNs> resets = times_of(r, "000#8101");
+  const std::vector<TimeNs> early = times_of(r, "701#00");
+  REQUIRE(resets.size() == 1u);
+  REQUIRE(early.size() == 1u);
+  REQUIRE(early[0] < resets[0]);                   // the power-up boot-up went first...
+  REQUIRE(resets[0] - early[0] < microseconds(200));  // ... just before the reset
+
+  std::uint32_t flags = 0;
+  boot_through(r, &flags);
+  const std::vector<TimeNs> bootups = times_of(r, "701#00");
+  const std::vector<TimeNs> sdo = times_of(r, "601#");
+  REQUIRE(bootups.size() == 2u);  // power-up, then the answer to the reset
+  REQUIRE(!sdo.empty());
+  CHECK(sdo[0] > bootups[1]);     // configured only once the reset was answered
+  CHECK(r.arm->phase() == ArmPhase::Running);
+  CHECK((flags & (fault::kStateMismatch | fault::kBootFailed)) == 0u);
+}
+
+TEST_CASE("drivers: arm boot race: a boot-up received before the reset was sent (no echo)", "[drivers][arm][race][!shouldfail]")
+{
+  ArmConfig c;
+  c.cycle_period = milliseconds(1);
+  // Boot-up at 1.9 ms after power-up; the caller starts the master at 2 ms before polling the
+  // bus (start() then the cycle), so the boot-up is read after start() but was received before
+  // the reset was even queued.
+  drvtest::ArmRig r({{0, 1}}, c, 64, {}, false, microseconds(1900));
+  REQUIRE(r.arm != nullptr);
+  r.cycle();
+  r.cycle();
+  r.arm->start(r.t);
+  std::uint32_t flags = 0;
+  boot_through(r, &flags);
+  const std::vector<TimeNs> bootups = times_of(r, "701#00");
+  const std::vector<TimeNs> resets = times_of(r, "000#8101");
+  const std::vector<TimeNs> sdo = times_of(r, "601#");
+  REQUIRE(bootups.size() == 2u);
+  REQUIRE(resets.size() == 1u);
+  REQUIRE(bootups[0] < resets[0]);
+  REQUIRE(!sdo.empty());
+  CHECK(sdo[0] > bootups[1]);
+  CHECK(r.arm->phase() == ArmPhase::Running);
+  CHECK((flags & (fault::kStateMismatch | fault::kBootFailed)) == 0u);
+}
