@@ -337,6 +337,9 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
     if (d.has_pending && send(d.cfg.bus, &d, d.pending)) {
       d.has_pending = false;
       ++count;
+      if (phase_ == ArmPhase::Resetting) {
+        d.nmt.sent(now);  // the reset is on its way (NmtBoot ignores anything else)
+      }
       if (d.sdo.busy()) {
         d.sdo.sent(now);
       }
@@ -529,6 +532,20 @@ void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept
     d.events |= fault::kOutOfRange;
   }
   d.last_claim = Claim::Accepted;
+}
+
+void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs) noexcept
+{
+  const int slot = routers_.slot_of(from);
+  if (slot < 0 || phase_ != ArmPhase::Resetting || rx.frame.id != MRQP_FW_COB_NMT ||
+      (rx.frame.flags & MRQP_FW_FRAME_EXT) != 0u) {
+    return;
+  }
+  for (Drive& d : drives_) {
+    if (d.cfg.bus == static_cast<std::size_t>(slot)) {
+      (void)d.nmt.on_own_command(rx.frame);
+    }
+  }
 }
 
 Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept

@@ -157,6 +157,7 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
     p->buses_[d.cfg.bus].node_to_drive[d.cfg.node] = static_cast<std::int16_t>(i);
     p->buses_[d.cfg.bus].has_drives = true;
     d.nmt.init(d.cfg.node, config.reset, config.boot_timeout);
+    d.nmt.set_echo(buses[d.cfg.bus]->bus().echoes_own());
     d.sdo.init(d.cfg.node, p->build_writes(d.cfg), config.sdo_timeout);
     d.heartbeat.init(config.producer_heartbeat_ms > 0u, config.heartbeat_timeout);
   }

@@ -9,6 +9,7 @@
 #include <mrqp/drivers/canopen/nmt_boot.hpp>
 #include <mrqp/drivers/canopen/sdo_write_sequence.hpp>
 #include <mrqp/drivers/canopen/sync_producer.hpp>
+#include <mrqp/firmware_if/nmt.h>
 #include <mrqp/firmware_if/sdo.h>
 
 #include <string>
@@ -32,6 +33,11 @@ TEST_CASE("drivers: canopen: NmtBoot commands and the boot-up wait", "[drivers][
   CHECK(n.commanded() == milliseconds(10));
   CHECK_FALSE(n.process(milliseconds(110)));
   CHECK(n.process(milliseconds(110) + 1));
+  // Not an answer: the reset has not been handed to the bus yet.
+  CHECK_FALSE(n.on_boot_up(milliseconds(10)));
+  n.sent(milliseconds(11));
+  CHECK_FALSE(n.on_boot_up(milliseconds(11) - 1));  // received before the reset was sent
+  CHECK(n.waiting());
   CHECK(n.on_boot_up(milliseconds(12)));
   CHECK(n.booted());
   CHECK_FALSE(n.process(seconds(1)));
@@ -43,6 +49,18 @@ TEST_CASE("drivers: canopen: NmtBoot commands and the boot-up wait", "[drivers][
   n.begin(0, &f);
   CHECK(frame_str(f) == "000#8207");
   CHECK_FALSE(n.booted());
+  // With TX echoes: a boot-up counts only after the reset's own echo, whatever its time.
+  n.set_echo(true);
+  n.sent(0);
+  CHECK_FALSE(n.on_boot_up(milliseconds(3)));
+  mrqp_fw_frame other{};
+  (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_RESET_COMM, 8, &other);
+  CHECK_FALSE(n.on_own_command(other));  // another node's reset
+  (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, 7, &other);
+  CHECK_FALSE(n.on_own_command(other));  // not the boot command
+  CHECK(n.on_own_command(f));
+  CHECK(n.on_boot_up(milliseconds(3)));
+  n.set_echo(false);
   n.init(7, NmtReset::None, milliseconds(100));
   n.begin(0, &f);
   CHECK(frame_str(f) == "000#8007");

@@ -21,12 +21,16 @@ void NmtBoot::init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexc
   boot_timeout_ = boot_timeout;
   begun_ = false;
   booted_ = false;
+  sent_ = false;
+  echoed_ = false;
 }
 
 void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept
 {
   begun_ = true;
   booted_ = reset_ == NmtReset::None;
+  sent_ = false;
+  echoed_ = false;
   commanded_ = now;
   (void)mrqp_fw_nmt_pack(boot_command(reset_), node_, out);
 }
@@ -37,9 +41,34 @@ void NmtBoot::start_remote(TimeNs now, mrqp_fw_frame* out) noexcept
   (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, node_, out);
 }
 
-bool NmtBoot::on_boot_up(TimeNs) noexcept
+void NmtBoot::sent(TimeNs now) noexcept
+{
+  if (waiting() && !sent_) {
+    sent_ = true;
+    sent_at_ = now;
+  }
+}
+
+bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept
+{
+  mrqp_fw_nmt_cmd cmd;
+  std::uint8_t target = 0;
+  if (!waiting() || mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || cmd != boot_command(reset_) ||
+      (target != node_ && target != 0u)) {
+    return false;
+  }
+  echoed_ = true;
+  return true;
+}
+
+bool NmtBoot::on_boot_up(TimeNs t) noexcept
 {
   if (!waiting()) {
+    return false;
+  }
+  // Only an answer to the command on the bus: received after its echo, or (without echoes)
+  // not received before the command was handed to the bus.
+  if (echo_ ? !echoed_ : !sent_ || t < sent_at_) {
     return false;
   }
   booted_ = true;

@@ -4,7 +4,9 @@
 // non-blocking state machine stepped by the control cycle:
 //
 //   start()      Resetting    NMT reset node (or reset communication) per drive; wait for every
-//                             boot-up message (0x700 + node, 0x00). With reset None: NMT enter
+//                             boot-up message (0x700 + node, 0x00) that answers it: sent after
+//                             the reset was on the bus (NmtBoot: the reset's TX echo on a bus
+//                             with echoes, else its send time). With reset None: NMT enter
 //                             pre-operational instead, no wait.
 //                Configuring  expedited SDO writes per drive, one in flight per drive (all drives
 //                             in parallel): producer heartbeat 0x1017, consumer heartbeat 0x1016:1
@@ -150,6 +152,8 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   JointFeedback joint(std::size_t joint) const noexcept override;
 
   Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  /// The TX echo of the master's NMT commands (see NmtBoot).
+  void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
   ArmPhase phase() const noexcept { return phase_; }
   /// Every drive reports Operation enabled.
