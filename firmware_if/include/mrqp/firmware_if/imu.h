@@ -15,9 +15,9 @@
  *     bytes 22-23  CRC-16/CCITT-FALSE, MSB first, over bytes 0-21
  *
  * Why CAN FD and one frame: the 21 bytes of a sample need three classic frames; at 1 kHz that is
- * 3 x ~135 bit times = ~0.4 ms of every 1 ms cycle on a 1 Mbit/s bus (40 % of the bus the drives
- * share) and a three-way reassembly with torn-triple detection. One 24-byte FD frame at 5 Mbit/s
- * data phase takes ~60 us, is atomic (no torn sample) and carries its own CRC end to end.
+ * 3 x 111..135 bit times = 0.33..0.41 ms of every 1 ms cycle on a 1 Mbit/s bus (a third of the bus
+ * the drives share) and a three-way reassembly with torn-sample detection. One 24-byte FD frame
+ * at 1/5 Mbit/s takes 75.8..89.6 us, is atomic (no torn sample) and carries its own CRC.
  *
  * Scaling: the quaternion's wire unit is fixed (1/32767: 3.1e-5, an attitude resolution of about
  * 6e-5 rad); unpack rejects a quaternion whose norm is off by more than MRQP_FW_IMU_NORM_TOLERANCE
