@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <any>
 #include <map>
 #include <optional>
 #include <string>
@@ -112,6 +113,15 @@ struct JointInequalitySpec {
   Source source;
 };
 
+/// An item of a constraint kind that has no list of its own in SceneSpec (constraint_registry.cpp):
+/// the kind's reader stores its own spec type in `spec`, its factory reads it back.
+struct ConstraintItemSpec {
+  std::string kind;  // the kind's top-level key
+  std::string name;  // empty when the kind has no names
+  std::any spec;
+  Source source;
+};
+
 struct SettingsSpec {
   double dt = 0.001;              // control period, s
   double duration = 5.0;          // length of a simulated run, s
@@ -133,6 +143,7 @@ struct SceneSpec {
   std::vector<TaskSpec> tasks;
   std::vector<ComDamperSpec> com_dampers;
   std::vector<JointInequalitySpec> joint_inequalities;
+  std::vector<ConstraintItemSpec> constraints;  // items of every other constraint kind, in file order
 };
 
 }  // namespace mrqp::scene

@@ -18,6 +18,7 @@ void PostureTask::attach(const MultiRobotProblem& p) noexcept {
   if (target_set_) return;
   const Entity& e = p.entity(entity_);
   for (int k = e.jointOffset(); k < e.nv(); ++k) target_(k - e.jointOffset()) = e.q()(e.qIndexOfV(k));
+  target_set_ = true;  // kept when the task is released and added again
 }
 
 bool PostureTask::setTargetVector(const Eigen::Ref<const Eigen::VectorXd>& q_joints) noexcept {

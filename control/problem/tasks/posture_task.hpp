@@ -3,7 +3,7 @@
 //
 //   q̈_k = q̈ʳᵉᶠ_k − K (q_k − qʳᵉᶠ_k) − D (q̇_k − q̇ʳᵉᶠ_k)          (eq. 26, T = I, J̇q̇ = 0)
 //
-// Without a target set, it takes the entity's joint positions when added to the problem. Its
+// Without a target set, it takes the entity's joint positions when first added to a problem. Its
 // error() stays zero (the error has one row per joint; read it from the entity).
 #pragma once
 
