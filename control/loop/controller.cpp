@@ -1,0 +1,460 @@
+// The controller's cycle (see controller.hpp).
+#include "loop/controller.hpp"
+
+#include <mrqp/drivers/arm_driver.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mrqp::loop {
+
+namespace fault = drivers::fault;
+
+const char* stopReasonStr(StopReason reason) noexcept {
+  switch (reason) {
+    case StopReason::None: return "none";
+    case StopReason::QpNotOptimal: return "qp not optimal";
+    case StopReason::DriverFault: return "driver fault";
+    case StopReason::StaleSensor: return "stale sensor";
+    case StopReason::NonFinite: return "non-finite value";
+  }
+  return "unknown";
+}
+
+namespace {
+
+constexpr std::uint32_t kDefaultFatal = fault::kHeartbeatLost | fault::kFeedbackMissing | fault::kEmcy |
+                                        fault::kDeviceFault | fault::kOutOfRange | fault::kSetpointRefused |
+                                        fault::kCorruptFrame | fault::kBusOff | fault::kStateMismatch |
+                                        fault::kTimeout | fault::kBootFailed | fault::kTornPair | fault::kRxOverflow;
+
+}  // namespace
+
+Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardware& hw,
+                       const std::vector<drivers::Bus*>& buses, const ControllerOptions& options)
+    : problem_(problem),
+      options_(options),
+      dt_(problem.settings().dt),
+      fatal_(options.fatal_flags != 0u ? options.fatal_flags : kDefaultFatal),
+      feedback_missing_cycles_(hw.feedback_missing_cycles) {
+  flag_first_.fill(-1);
+  if (buses.size() != hw.buses.size()) {
+    throw std::invalid_argument("controller: " + std::to_string(buses.size()) + " buses given for " +
+                                std::to_string(hw.buses.size()) + " in the hardware section");
+  }
+  for (drivers::Bus* b : buses) {
+    routers_.push_back(std::make_unique<drivers::BusRouter>(*b));
+  }
+  bus_frames_prev_.assign(buses.size(), 0);
+  robots_.reserve(hw.robots.size());
+  for (const ResolvedRobot& rr : hw.robots) {
+    RobotIo r;
+    r.entity = rr.entity;
+    r.name = rr.name;
+    r.divisor = rr.divisor;
+    r.safe_stop = rr.safe_stop;
+    r.hold_damping = rr.hold_damping;
+    const problem::Entity& e = problem_.entity(rr.entity);
+    // The robot's buses, in the order of the hardware section.
+    std::vector<int> bus_of_router;
+    for (std::size_t b = 0; b < hw.buses.size(); ++b) {
+      if (hw.buses[b].robot == static_cast<int>(&rr - hw.robots.data())) {
+        bus_of_router.push_back(static_cast<int>(b));
+        r.routers.push_back(routers_[b].get());
+      }
+    }
+    if (!rr.drives.empty()) {
+      drivers::ArmConfig ac;
+      ac.cycle_period = static_cast<drivers::TimeNs>(std::llround(dt_ * rr.divisor * 1e9));
+      ac.heartbeat_timeout = static_cast<drivers::TimeNs>(std::llround(hw.heartbeat_timeout_s * 1e9));
+      ac.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
+      for (const ResolvedDrive& d : rr.drives) {
+        drivers::ArmDriveConfig dc;
+        dc.bus = static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), d.bus) -
+                                          bus_of_router.begin());
+        dc.node = static_cast<std::uint8_t>(d.node);
+        dc.scale.rated_torque_mNm = static_cast<std::uint32_t>(std::lround(d.rated_torque * 1000.0));
+        dc.mode = d.mode == DriveMode::Csp ? MRQP_FW_MODE_CSP : MRQP_FW_MODE_CST;
+        const double lim = e.effortLimit()(d.joint);
+        if (lim > 0.0) dc.torque_limit = lim;
+        ac.drives.push_back(dc);
+      }
+      std::string err;
+      std::unique_ptr<drivers::ArmDriver> arm = drivers::ArmDriver::create(r.routers, ac, &err);
+      if (!arm) throw std::runtime_error("controller: " + rr.name + ": " + err);
+      drivers::JointDevice* dev = arm.get();
+      r.devices.push_back(std::move(arm));
+      for (std::size_t i = 0; i < rr.drives.size(); ++i) {
+        const ResolvedDrive& d = rr.drives[i];
+        JointIo j;
+        j.device = dev;
+        j.index = i;
+        j.v_index = d.joint;
+        j.q_index = d.q_index;
+        j.torque = d.mode == DriveMode::Cst;
+        j.name = rr.name + "." + d.joint_name;
+        r.joints.push_back(j);
+      }
+    }
+    if (!rr.impedance.empty()) {
+      throw std::runtime_error("controller: " + rr.name + ": MIT motors and FD boards are not run by this build of the loop");
+    }
+    for (const ResolvedSensor& s : rr.ft_sensors) {
+      notices_.push_back(rr.name + ": F/T sensor at " + s.frame_name + " declared (bus budget counted) but not read by this build");
+    }
+    for (const ResolvedSensor& s : rr.imus) {
+      notices_.push_back(rr.name + ": IMU at " + s.frame_name + " declared (bus budget counted) but not read by this build: "
+                         "the base is the controller's own integration");
+    }
+    const std::size_t n = r.joints.size();
+    r.q_cmd.assign(n, 0.0);
+    r.v_cmd.assign(n, 0.0);
+    r.tau_cmd.assign(n, 0.0);
+    r.q_meas.assign(n, 0.0);
+    r.v_meas.assign(n, 0.0);
+    r.stale.assign(n, 0);
+    r.q_sent.assign(n, 0.0);
+    r.v_sent.assign(n, 0.0);
+    r.miss_rate.assign(n, 0.0);
+    robots_.push_back(std::move(r));
+  }
+}
+
+bool Controller::addHook(CycleHook& hook) noexcept {
+  if (hook_count_ >= kMaxHooks) return false;
+  hooks_[static_cast<std::size_t>(hook_count_++)] = &hook;
+  return true;
+}
+
+void Controller::startDevices(drivers::TimeNs now) noexcept {
+  for (RobotIo& r : robots_) {
+    for (auto& d : r.devices) d->start(now);
+  }
+}
+
+bool Controller::bootCycle(drivers::TimeNs now) noexcept {
+  bool all_ready = true;
+  bool all_booted = true;
+  const std::uint64_t k = boot_cycle_++;
+  auto due = [k](const RobotIo& r) { return k % static_cast<std::uint64_t>(r.divisor) == 0u; };
+  for (RobotIo& r : robots_) {
+    if (!due(r)) continue;
+    for (drivers::BusRouter* router : r.routers) router->poll(now);
+  }
+  for (RobotIo& r : robots_) {
+    for (auto& d : r.devices) {
+      if (!due(r)) {
+        all_ready = all_ready && d->ready();
+        continue;
+      }
+      boot_flags_ |= d->update(now).flags;
+      all_ready = all_ready && d->ready();
+      if (auto* arm = dynamic_cast<drivers::ArmDriver*>(d.get())) {
+        all_booted = all_booted && arm->phase() == drivers::ArmPhase::Running;
+      }
+    }
+  }
+  if (all_booted && !enable_requested_) {
+    enable_requested_ = true;
+    for (RobotIo& r : robots_) {
+      for (auto& d : r.devices) d->request_enable(now);
+    }
+  }
+  for (RobotIo& r : robots_) {
+    if (!due(r)) continue;
+    for (auto& d : r.devices) {
+      // Until enabled, hold every drive where it is.
+      for (const JointIo& j : r.joints) {
+        if (j.device != d.get()) continue;
+        const drivers::JointFeedback fb = j.device->joint(j.index);
+        drivers::JointCommand c;
+        c.position = fb.valid ? fb.position : 0.0;
+        if (fb.valid) (void)j.device->set_joint(j.index, c);
+        const std::size_t i = static_cast<std::size_t>(&j - r.joints.data());
+        r.q_sent[i] = c.position;
+        r.v_sent[i] = 0.0;
+      }
+      d->transmit(now);
+    }
+  }
+  return all_ready;
+}
+
+void Controller::trip(StopReason reason, std::uint32_t flags, const std::string* device, drivers::TimeNs now) noexcept {
+  if (stop_ != StopReason::None) return;
+  stop_ = reason;
+  stop_flags_ = flags;
+  stop_device_ = device;
+  stop_cycle_ = cycle_;
+  stop_time_ = now - start_;
+}
+
+void Controller::read(drivers::TimeNs now) noexcept {
+  for (RobotIo& r : robots_) {
+    if (!robotCycle(r)) continue;
+    for (drivers::BusRouter* router : r.routers) router->poll(now);
+    for (auto& d : r.devices) {
+      const drivers::FaultReport& rep = d->update(now);
+      // A bus-off that recovered before this update shows only as an error event: it is one.
+      std::uint32_t flags = rep.flags;
+      for (std::size_t b = 0; b < rep.bus_count; ++b) {
+        if ((rep.buses[b].error_flags & drivers::bus_error::kBusOff) != 0u) flags |= fault::kBusOff;
+      }
+      if (flags == 0u) continue;
+      flags_seen_ |= flags;
+      for (int b = 0; b < 32; ++b) {
+        if (((flags >> b) & 1u) && flag_first_[static_cast<std::size_t>(b)] < 0) {
+          flag_first_[static_cast<std::size_t>(b)] = now - start_;
+        }
+      }
+      if ((flags & fatal_) != 0u) {
+        // The first device with a fatal flag names the fault.
+        const std::string* where = &r.name;
+        for (std::size_t i = 0; i < rep.device_count && i < r.joints.size(); ++i) {
+          if ((rep.devices[i].flags & fatal_) != 0u) {
+            where = &r.joints[i].name;
+            break;
+          }
+        }
+        trip(StopReason::DriverFault, flags & fatal_, where, now);
+      }
+    }
+  }
+}
+
+void Controller::estimate(drivers::TimeNs now) noexcept {
+  for (RobotIo& r : robots_) {
+    if (!robotCycle(r)) continue;
+    problem::Entity& e = problem_.entity(r.entity);
+    for (std::size_t i = 0; i < r.joints.size(); ++i) {
+      const JointIo& j = r.joints[i];
+      const drivers::JointFeedback fb = j.device->joint(j.index);
+      const bool missing = !fb.valid || !fb.fresh;
+      // Frame loss: the rate of robot cycles without fresh feedback, averaged over
+      // options_.loss_window cycles, may not exceed options_.loss_limit.
+      r.miss_rate[i] += ((missing ? 1.0 : 0.0) - r.miss_rate[i]) / options_.loss_window;
+      if (r.miss_rate[i] > options_.loss_limit) {
+        trip(StopReason::StaleSensor, fault::kSampleLost, &j.name, now);
+      }
+      if (missing) {
+        if (++r.stale[i] > static_cast<std::uint32_t>(feedback_missing_cycles_)) {
+          trip(StopReason::StaleSensor, fault::kFeedbackMissing, &j.name, now);
+        }
+        continue;
+      }
+      r.stale[i] = 0;
+      if (!std::isfinite(fb.position) || !std::isfinite(fb.velocity)) {
+        trip(StopReason::NonFinite, fault::kOutOfRange, &j.name, now);
+        continue;
+      }
+      r.q_meas[i] = fb.position;
+      r.v_meas[i] = fb.velocity;
+      // The feedback was sampled at the SYNC that carried the previous setpoint: correct the
+      // state predicted since then by what the joint did differently from that setpoint.
+      const double dq = fb.position - r.q_sent[i];
+      const double dv = fb.velocity - r.v_sent[i];
+      if (cycle_ > 0) {
+        r.tracking_error_max = std::max(r.tracking_error_max, std::fabs(dq));
+      }
+      e.q()(j.q_index) += dq;
+      e.v()(j.v_index) += dv;
+    }
+  }
+}
+
+void Controller::write(drivers::TimeNs now) noexcept {
+  problem_.integrate(dt_);
+  for (RobotIo& r : robots_) {
+    const problem::Entity& e = problem_.entity(r.entity);
+    const auto tau = problem_.torque(r.entity);
+    for (std::size_t i = 0; i < r.joints.size(); ++i) {
+      const JointIo& j = r.joints[i];
+      r.q_cmd[i] = e.q()(j.q_index);
+      r.v_cmd[i] = e.v()(j.v_index);
+      r.tau_cmd[i] = tau(j.v_index);
+    }
+    if (!robotCycle(r)) continue;
+    for (std::size_t i = 0; i < r.joints.size(); ++i) {
+      const JointIo& j = r.joints[i];
+      drivers::JointCommand c;
+      c.position = r.q_cmd[i];
+      c.velocity = r.v_cmd[i];
+      c.torque = j.torque ? r.tau_cmd[i] : 0.0;
+      (void)j.device->set_joint(j.index, c);
+      remember(r, i);
+    }
+    for (auto& d : r.devices) d->transmit(now);
+  }
+}
+
+void Controller::remember(RobotIo& r, std::size_t i) noexcept {
+  // What the drive will report for this setpoint: its position, and (CSP) the velocity it derives
+  // from two successive targets; a torque drive's joint is not servoed: report what was predicted.
+  if (r.joints[i].torque) {
+    r.q_sent[i] = r.q_cmd[i];
+    r.v_sent[i] = r.v_cmd[i];
+  } else {
+    r.v_sent[i] = (r.q_cmd[i] - r.q_sent[i]) / (dt_ * r.divisor);
+    r.q_sent[i] = r.q_cmd[i];
+  }
+}
+
+void Controller::writeSafe(drivers::TimeNs now) noexcept {
+  for (RobotIo& r : robots_) {
+    problem::Entity& e = problem_.entity(r.entity);
+    const double decay = std::max(0.0, 1.0 - r.hold_damping * dt_);
+    for (std::size_t i = 0; i < r.joints.size(); ++i) {
+      const JointIo& j = r.joints[i];
+      if (j.torque) {
+        r.tau_cmd[i] = -options_.brake_damping * r.v_meas[i];
+      } else {
+        // Hold with damping: the commanded velocity decays to zero, the position follows it.
+        r.v_cmd[i] *= decay;
+        r.q_cmd[i] += r.v_cmd[i] * dt_;
+      }
+      e.q()(j.q_index) = r.q_cmd[i];
+      e.v()(j.v_index) = r.v_cmd[i];
+    }
+    if (!robotCycle(r)) continue;
+    if (r.safe_stop == SafeStop::QuickStop) {
+      if (!quick_stop_sent_) {
+        for (auto& d : r.devices) d->request_quick_stop(now);
+      }
+    } else {
+      for (std::size_t i = 0; i < r.joints.size(); ++i) {
+        const JointIo& j = r.joints[i];
+        drivers::JointCommand c;
+        c.position = r.q_cmd[i];
+        c.velocity = r.v_cmd[i];
+        c.torque = j.torque ? r.tau_cmd[i] : 0.0;
+        (void)j.device->set_joint(j.index, c);
+        remember(r, i);
+      }
+    }
+    for (auto& d : r.devices) d->transmit(now);
+  }
+  quick_stop_sent_ = true;
+}
+
+void Controller::cycle(drivers::TimeNs now) noexcept {
+  if (!started_) {
+    started_ = true;
+    start_ = now;
+  }
+  const drivers::TimeNs t0 = drivers::monotonic_now();
+  read(now);
+  const drivers::TimeNs t1 = drivers::monotonic_now();
+  if (stop_ == StopReason::None) estimate(now);
+  for (int h = 0; h < hook_count_; ++h) hooks_[static_cast<std::size_t>(h)]->onCycle(*this, now);
+  const drivers::TimeNs t2 = drivers::monotonic_now();
+  drivers::TimeNs t3 = t2, t4 = t2;
+  if (stop_ == StopReason::None) {
+    if (problem_.update() != problem::UpdateStatus::Ok) {
+      trip(StopReason::NonFinite, 0, nullptr, now);
+    }
+    t3 = drivers::monotonic_now();
+    if (stop_ == StopReason::None) {
+      status_ = problem_.solve();
+      if (status_ != qp::QpStatus::Optimal) {
+        trip(StopReason::QpNotOptimal, 0, nullptr, now);
+      } else if (!problem_.solution().allFinite()) {
+        trip(StopReason::NonFinite, 0, nullptr, now);
+      }
+    }
+    t4 = drivers::monotonic_now();
+  }
+  if (stop_ == StopReason::None) {
+    write(now);
+  } else {
+    writeSafe(now);
+  }
+  const drivers::TimeNs t5 = drivers::monotonic_now();
+  timing_.phase_ns = {t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4};
+  timing_.total_ns = t5 - t0;
+  logRow(now);
+  ++cycle_;
+}
+
+void Controller::attachLog(LogRing& log, const std::vector<std::string>& task_names,
+                           const std::vector<std::string>& contact_names) {
+  auto nameOf = [](const std::vector<std::string>& names, int id, const char* what) {
+    const auto i = static_cast<std::size_t>(id);
+    return i < names.size() && !names[i].empty() ? names[i] : what + std::to_string(id);
+  };
+  log_ = &log;
+  col_t_ = log.addColumn("t");
+  col_phase_ = log.addColumn("read_us");
+  log.addColumn("estimate_us");
+  log.addColumn("update_us");
+  log.addColumn("solve_us");
+  log.addColumn("write_us");
+  col_total_ = log.addColumn("cycle_us");
+  col_status_ = log.addColumn("qp_status");
+  col_iter_ = log.addColumn("qp_iterations");
+  col_safe_ = log.addColumn("safe_stop");
+  col_flags_ = log.addColumn("fault_flags");
+  task_ids_.clear();
+  for (int id = 0; id < problem_.taskCapacity(); ++id) {
+    if (!problem_.taskActive(id)) continue;
+    const int c = log.addColumn("err_" + nameOf(task_names, id, "task"));
+    if (task_ids_.empty()) col_tasks_ = c;
+    task_ids_.push_back(id);
+  }
+  for (int id = 0; id < problem_.contactCapacity(); ++id) {
+    if (!problem_.contactActive(id)) continue;
+    const std::string name = nameOf(contact_names, id, "contact");
+    const int c = log.addColumn("fx_" + name);
+    log.addColumn("fy_" + name);
+    log.addColumn("fz_" + name);
+    if (contact_ids_.empty()) col_contacts_ = c;
+    contact_ids_.push_back(id);
+  }
+  for (const RobotIo& r : robots_) {
+    for (const JointIo& j : r.joints) {
+      const int c = log.addColumn("cmd_" + j.name);
+      log.addColumn("fb_" + j.name);
+      if (col_joints_ < 0) col_joints_ = c;
+    }
+  }
+  for (std::size_t b = 0; b < routers_.size(); ++b) {
+    const int c = log.addColumn("frames_bus" + std::to_string(b));
+    if (b == 0) col_buses_ = c;
+  }
+}
+
+void Controller::logRow(drivers::TimeNs now) noexcept {
+  if (log_ == nullptr) return;
+  double* row = log_->beginRow();
+  if (row == nullptr) return;
+  row[col_t_] = static_cast<double>(now - start_) * 1e-9;
+  for (int p = 0; p < kPhaseCount; ++p) row[col_phase_ + p] = static_cast<double>(timing_.phase_ns[static_cast<std::size_t>(p)]) * 1e-3;
+  row[col_total_] = static_cast<double>(timing_.total_ns) * 1e-3;
+  row[col_status_] = static_cast<double>(static_cast<int>(status_));
+  row[col_iter_] = static_cast<double>(problem_.solver().info().iterations);
+  row[col_safe_] = static_cast<double>(static_cast<int>(stop_));
+  row[col_flags_] = static_cast<double>(flags_seen_);
+  for (std::size_t i = 0; i < task_ids_.size(); ++i) {
+    row[col_tasks_ + static_cast<int>(i)] = problem_.taskError(task_ids_[i]).norm();
+  }
+  for (std::size_t i = 0; i < contact_ids_.size(); ++i) {
+    const Eigen::Vector3d f = problem_.contactForce(contact_ids_[i]);
+    for (int k = 0; k < 3; ++k) row[col_contacts_ + 3 * static_cast<int>(i) + k] = f(k);
+  }
+  int c = col_joints_;
+  for (const RobotIo& r : robots_) {
+    for (std::size_t i = 0; i < r.joints.size(); ++i) {
+      row[c++] = r.q_cmd[i];
+      row[c++] = r.q_meas[i];
+    }
+  }
+  for (std::size_t b = 0; b < routers_.size(); ++b) {
+    const drivers::BusStatus s = routers_[b]->bus().status();
+    const std::uint64_t frames = s.tx_frames + s.rx_frames;
+    row[col_buses_ + static_cast<int>(b)] = static_cast<double>(frames - bus_frames_prev_[b]);
+    bus_frames_prev_[b] = frames;
+  }
+  log_->commit();
+}
+
+}  // namespace mrqp::loop

@@ -1,0 +1,57 @@
+// The emulated hardware of a scene (docs/loop.md): one SimBus per bus of the hardware section,
+// the controller's node on each, and the emulated firmware of every device hosted on the plant
+// (PlantCia402Drive for the CiA 402 drives). Plant and buses advance on ONE simulated clock:
+// advanceTo(t) runs the buses to t (drives receive their setpoints and SYNC, apply them to the
+// plant and sample it) and then steps the plant to t, so a run is deterministic.
+// Construction allocates; advanceTo and the fault injections do not.
+#pragma once
+
+#include <mrqp/drivers/sim_bus.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "loop/hardware_check.hpp"
+#include "loop/plant.hpp"
+#include "loop/plant_cia402_drive.hpp"
+
+namespace mrqp::loop {
+
+class EmulatedRig {
+ public:
+  /// `start` is the simulated time at which the plant is (usually 0).
+  EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotProblem& problem, Plant& plant);
+  EmulatedRig(const EmulatedRig&) = delete;
+  EmulatedRig& operator=(const EmulatedRig&) = delete;
+
+  std::size_t busCount() const noexcept { return buses_.size(); }
+  /// The controller's node on bus b.
+  drivers::SimNode& master(std::size_t b) noexcept { return *masters_[b]; }
+  drivers::SimBus& bus(std::size_t b) noexcept { return *buses_[b]; }
+
+  /// Runs every bus to t, then steps the plant to t (in steps of at most max_plant_step).
+  void advanceTo(drivers::TimeNs t) noexcept;
+  drivers::TimeNs now() const noexcept { return now_; }
+  void setMaxPlantStep(drivers::TimeNs dt) noexcept { max_step_ = dt; }
+
+  /// Drives by "ENTITY.JOINT"; nullptr when there is none.
+  PlantCia402Drive* drive(const std::string& name) noexcept;
+  /// The first drive, nullptr when there is none.
+  PlantCia402Drive* firstDrive() noexcept { return drives_.empty() ? nullptr : drives_.front().drive.get(); }
+  const std::string& driveName(const PlantCia402Drive* d) const;
+
+ private:
+  struct DriveSlot {
+    std::string name;
+    std::unique_ptr<PlantCia402Drive> drive;
+  };
+  Plant& plant_;
+  std::vector<std::unique_ptr<drivers::SimBus>> buses_;
+  std::vector<drivers::SimNode*> masters_;
+  std::vector<DriveSlot> drives_;
+  drivers::TimeNs now_ = 0;
+  drivers::TimeNs max_step_ = 1000000;
+};
+
+}  // namespace mrqp::loop

@@ -1,0 +1,204 @@
+// Resolving the hardware section against the models, and the bus budget (see hardware_check.hpp).
+#include "loop/hardware_check.hpp"
+
+#include <mrqp/drivers/bus_budget.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "scene/scene_yaml.hpp"
+
+namespace mrqp::loop {
+
+namespace {
+
+[[noreturn]] void fail(const scene::Source& s, const std::string& field, const std::string& message) {
+  throw scene::SceneError(s.file + ":" + std::to_string(s.line) + ": " + field + ": " + message);
+}
+
+std::string robotField(std::size_t r, const std::string& rest) {
+  return "hardware.robots[" + std::to_string(r) + "]" + (rest.empty() ? "" : "." + rest);
+}
+
+int busIndex(const HardwareSpec& spec, const std::string& name, const scene::Source& at, const std::string& field) {
+  for (std::size_t i = 0; i < spec.buses.size(); ++i) {
+    if (spec.buses[i].name == name) {
+      return static_cast<int>(i);
+    }
+  }
+  fail(at, field, "unknown bus '" + name + "' (not in hardware.buses)");
+}
+
+}  // namespace
+
+ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem, double dt) {
+  ResolvedHardware out;
+  out.heartbeat_timeout_s = spec.heartbeat_timeout_s;
+  out.feedback_missing_cycles = spec.feedback_missing_cycles;
+  for (const BusDecl& b : spec.buses) {
+    ResolvedBus rb;
+    rb.decl = b;
+    out.buses.push_back(rb);
+  }
+  // (bus, node) → where it was first used
+  std::map<std::pair<int, int>, int> nodes;
+  auto claimNode = [&](int bus, int node, const scene::Source& at, const std::string& field) {
+    const auto [it, inserted] = nodes.emplace(std::make_pair(bus, node), at.line);
+    if (!inserted) {
+      fail(at, field,
+           "node id " + std::to_string(node) + " on bus '" + spec.buses[static_cast<std::size_t>(bus)].name +
+               "' is already used (line " + std::to_string(it->second) + ")");
+    }
+  };
+  auto claimBus = [&](int bus, int robot, const scene::Source& at, const std::string& field) {
+    ResolvedBus& rb = out.buses[static_cast<std::size_t>(bus)];
+    if (rb.robot >= 0 && rb.robot != robot) {
+      fail(at, field,
+           "bus '" + rb.decl.name + "' already carries robot '" + out.robots[static_cast<std::size_t>(rb.robot)].name +
+               "' (one robot per bus: its drives share one SYNC)");
+    }
+    rb.robot = robot;
+  };
+
+  for (std::size_t r = 0; r < spec.robots.size(); ++r) {
+    const RobotHardware& rh = spec.robots[r];
+    ResolvedRobot rr;
+    rr.name = rh.entity;
+    rr.entity = problem.entityIndex(rh.entity);
+    rr.divisor = rh.divisor;
+    rr.safe_stop = rh.safe_stop;
+    rr.hold_damping = rh.hold_damping;
+    if (rr.entity < 0) {
+      fail(rh.source, robotField(r, "entity"), "unknown entity '" + rh.entity + "'");
+    }
+    const problem::Entity& e = problem.entity(rr.entity);
+    std::vector<int> assigned(static_cast<std::size_t>(e.nv()), -1);
+    const int robot_index = static_cast<int>(out.robots.size());
+    out.robots.push_back(rr);
+    ResolvedRobot& rob = out.robots.back();
+
+    auto joint = [&](const std::string& name, const scene::Source& at, const std::string& field) {
+      const int k = e.jointIndex(name);
+      if (k < 0) {
+        fail(at, field, "entity '" + rh.entity + "' has no joint '" + name + "'");
+      }
+      if (!e.actuated()[static_cast<std::size_t>(k)]) {
+        fail(at, field, "joint '" + name + "' of '" + rh.entity + "' is not actuated in the scene");
+      }
+      if (assigned[static_cast<std::size_t>(k)] >= 0) {
+        fail(at, field, "joint '" + name + "' already has a drive (line " +
+                            std::to_string(assigned[static_cast<std::size_t>(k)]) + ")");
+      }
+      assigned[static_cast<std::size_t>(k)] = at.line;
+      return k;
+    };
+
+    for (std::size_t g = 0; g < rh.cia402.size(); ++g) {
+      const Cia402Group& grp = rh.cia402[g];
+      const std::string field = robotField(r, "cia402[" + std::to_string(g) + "]");
+      const int bus = busIndex(spec, grp.bus, grp.source, field + ".bus");
+      if (spec.buses[static_cast<std::size_t>(bus)].data_bitrate != 0) {
+        fail(grp.source, field + ".bus", "CiA 402 drives need a classic bus; '" + grp.bus + "' is CAN FD");
+      }
+      claimBus(bus, robot_index, grp.source, field + ".bus");
+      for (std::size_t j = 0; j < grp.joints.size(); ++j) {
+        ResolvedDrive d;
+        d.joint = joint(grp.joints[j], grp.source, field + ".joints[" + std::to_string(j) + "]");
+        d.q_index = e.qIndexOfV(d.joint);
+        d.joint_name = grp.joints[j];
+        d.bus = bus;
+        d.node = grp.first_node + static_cast<int>(j);
+        d.mode = grp.mode;
+        d.rated_torque = grp.rated_torque;
+        claimNode(bus, d.node, grp.source, field + ".joints[" + std::to_string(j) + "]");
+        rob.drives.push_back(d);
+      }
+    }
+    for (std::size_t g = 0; g < rh.impedance.size(); ++g) {
+      const ImpedanceGroup& grp = rh.impedance[g];
+      const std::string field = robotField(r, grp.kind);
+      const int bus = busIndex(spec, grp.bus, grp.source, field + ".bus");
+      claimBus(bus, robot_index, grp.source, field + ".bus");
+      for (std::size_t j = 0; j < grp.joints.size(); ++j) {
+        ResolvedDrive d;
+        d.joint = joint(grp.joints[j], grp.source, field + ".joints[" + std::to_string(j) + "]");
+        d.q_index = e.qIndexOfV(d.joint);
+        d.joint_name = grp.joints[j];
+        d.bus = bus;
+        d.node = grp.first_id + static_cast<int>(j);
+        rob.impedance.push_back(d);
+      }
+    }
+    auto sensors = [&](const std::vector<SensorDecl>& decls, const char* key, std::vector<ResolvedSensor>& into) {
+      for (std::size_t i = 0; i < decls.size(); ++i) {
+        const SensorDecl& s = decls[i];
+        const std::string field = robotField(r, std::string(key) + "[" + std::to_string(i) + "]");
+        ResolvedSensor rs;
+        rs.frame = e.frameIndex(s.frame);
+        rs.frame_name = s.frame;
+        if (rs.frame < 0) {
+          fail(s.source, field + ".frame", "entity '" + rh.entity + "' has no frame '" + s.frame + "'");
+        }
+        rs.bus = busIndex(spec, s.bus, s.source, field + ".bus");
+        claimBus(rs.bus, robot_index, s.source, field + ".bus");
+        claimNode(rs.bus, s.node, s.source, field + ".node");
+        rs.node = s.node;
+        into.push_back(rs);
+      }
+    };
+    sensors(rh.ft_sensors, "ft_sensors", rob.ft_sensors);
+    sensors(rh.imus, "imus", rob.imus);
+    if (!rh.imus.empty() && !e.floatingBase()) {
+      fail(rh.imus.front().source, robotField(r, "imus"), "'" + rh.entity + "' has no floating base to estimate");
+    }
+    for (int k = e.jointOffset(); k < e.nv(); ++k) {
+      if (e.actuated()[static_cast<std::size_t>(k)] && assigned[static_cast<std::size_t>(k)] < 0) {
+        fail(rh.source, robotField(r, ""),
+             "actuated joint '" + std::string(e.jointName(k - e.jointOffset())) + "' of '" + rh.entity +
+                 "' has no drive");
+      }
+    }
+  }
+
+  // The bus budget of every bus at the cycle rate of the robot it carries.
+  for (std::size_t b = 0; b < out.buses.size(); ++b) {
+    ResolvedBus& rb = out.buses[b];
+    if (rb.robot < 0) {
+      fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]", "bus '" + rb.decl.name + "' carries nothing");
+    }
+    const ResolvedRobot& rob = out.robots[static_cast<std::size_t>(rb.robot)];
+    drivers::BusSpec bs;
+    bs.name = rb.decl.name;
+    bs.nominal_bps = rb.decl.bitrate;
+    bs.data_bps = rb.decl.data_bitrate;
+    bs.cycle_hz = 1.0 / (dt * rob.divisor);
+    rb.cycle_hz = bs.cycle_hz;
+    drivers::BusBudget budget(bs);
+    std::uint32_t drives = 0, mit = 0, fd = 0, ft = 0, imu = 0;
+    for (const ResolvedDrive& d : rob.drives) drives += d.bus == static_cast<int>(b) ? 1u : 0u;
+    for (const ResolvedDrive& d : rob.impedance) (rb.decl.data_bitrate != 0 ? fd : mit) += d.bus == static_cast<int>(b) ? 1u : 0u;
+    for (const ResolvedSensor& s : rob.ft_sensors) ft += s.bus == static_cast<int>(b) ? 1u : 0u;
+    for (const ResolvedSensor& s : rob.imus) imu += s.bus == static_cast<int>(b) ? 1u : 0u;
+    if (drives > 0 || ft > 0 || imu > 0) budget.add_sync();
+    if (drives > 0) {
+      budget.add_arm_drives(drives, true);
+      budget.add_heartbeats(drives, 0.1);
+    }
+    if (mit > 0) budget.add_mit_motors(mit);
+    if (fd > 0) budget.add_hand_board(fd);
+    if (ft > 0) {
+      if (rb.decl.data_bitrate != 0) budget.add_ft_fd(ft); else budget.add_ft_classic(ft);
+    }
+    if (imu > 0) budget.add_cyclic("IMU (orientation, rates, acceleration)", 3 * imu, 8, drivers::FrameFormat::Classic);
+    std::string message;
+    if (!budget.check(&message)) {
+      fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]", message);
+    }
+    rb.utilisation_worst = budget.result().utilisation_worst;
+    rb.report = budget.report();
+  }
+  return out;
+}
+
+}  // namespace mrqp::loop

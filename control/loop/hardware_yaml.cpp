@@ -1,0 +1,189 @@
+// The hardware section of a scene file (see hardware_yaml.hpp).
+#include "loop/hardware_yaml.hpp"
+
+#include <climits>
+
+#include "scene/yaml_reader.hpp"
+
+namespace mrqp::loop {
+
+namespace {
+
+using scene::Bound;
+using scene::Map;
+using scene::Reader;
+
+std::uint32_t bitRate(const Map& m, const std::string& key, std::uint32_t fallback, bool allow_zero) {
+  const YAML::Node* n = m.find(key);
+  if (n == nullptr) {
+    return fallback;
+  }
+  const int v = m.reader().integer(*n, m.at(key), allow_zero ? 0 : 10000, 20000000);
+  if (v != 0 && v < 10000) {
+    m.reader().fail(*n, m.at(key), "expected 0 or a bit rate in [10000, 20000000], got " + scene::describe(*n));
+  }
+  return static_cast<std::uint32_t>(v);
+}
+
+BusDecl readBus(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"name", "bitrate", "data_bitrate"});
+  BusDecl b;
+  b.name = m.name("name");
+  b.bitrate = bitRate(m, "bitrate", 1000000, false);
+  b.data_bitrate = bitRate(m, "data_bitrate", 0, true);
+  if (b.data_bitrate != 0 && b.data_bitrate < b.bitrate) {
+    r.fail(*m.find("data_bitrate"), m.at("data_bitrate"), "the data-phase rate must be at least the nominal rate");
+  }
+  b.source = m.source();
+  return b;
+}
+
+std::vector<std::string> jointList(const Map& m) {
+  std::vector<std::string> j = m.reader().names(m.require("joints"), m.at("joints"));
+  if (j.empty()) {
+    m.reader().fail(m.require("joints"), m.at("joints"), "expected at least one joint");
+  }
+  return j;
+}
+
+Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"bus", "mode", "first_node", "rated_torque", "joints"});
+  Cia402Group g;
+  g.bus = m.name("bus");
+  if (const YAML::Node* mode = m.find("mode")) {
+    const std::string s = r.name(*mode, m.at("mode"));
+    if (s == "csp") {
+      g.mode = DriveMode::Csp;
+    } else if (s == "cst") {
+      g.mode = DriveMode::Cst;
+    } else {
+      r.fail(*mode, m.at("mode"), "expected csp or cst, got \"" + s + "\"");
+    }
+  }
+  g.first_node = m.integer("first_node", 1, 127, 1);
+  g.rated_torque = m.number("rated_torque", Bound::Positive, 100.0);
+  g.joints = jointList(m);
+  if (g.first_node + static_cast<int>(g.joints.size()) - 1 > 127) {
+    r.fail(m.require("joints"), m.at("joints"),
+           std::to_string(g.joints.size()) + " drives from node " + std::to_string(g.first_node) +
+               " go past node id 127");
+  }
+  g.source = m.source();
+  return g;
+}
+
+ImpedanceGroup readImpedance(const Reader& r, const YAML::Node& n, const std::string& path, const char* kind) {
+  const Map m(r, n, path, {"bus", "first_id", "joints"});
+  ImpedanceGroup g;
+  g.kind = kind;
+  g.bus = m.name("bus");
+  g.first_id = m.integer("first_id", 1, 127, 1);
+  g.joints = jointList(m);
+  g.source = m.source();
+  return g;
+}
+
+SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"frame", "bus", "node"});
+  SensorDecl s;
+  s.frame = m.name("frame");
+  s.bus = m.name("bus");
+  s.node = m.integer("node", 1, 127, 1);
+  s.source = m.source();
+  return s;
+}
+
+RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path,
+              {"entity", "divisor", "safe_stop", "hold_damping", "cia402", "mit", "fd", "ft_sensors", "imus"});
+  RobotHardware rh;
+  rh.entity = m.name("entity");
+  rh.divisor = m.integer("divisor", 1, 1000, 1);
+  if (const YAML::Node* s = m.find("safe_stop")) {
+    const std::string v = r.name(*s, m.at("safe_stop"));
+    if (v == "hold") {
+      rh.safe_stop = SafeStop::Hold;
+    } else if (v == "quick_stop") {
+      rh.safe_stop = SafeStop::QuickStop;
+    } else {
+      r.fail(*s, m.at("safe_stop"), "expected hold or quick_stop, got \"" + v + "\"");
+    }
+  }
+  rh.hold_damping = m.number("hold_damping", Bound::NonNegative, 1.0);
+  auto each = [&](const char* key, auto read) {
+    if (const YAML::Node* l = m.find(key)) {
+      const std::vector<YAML::Node> items = r.list(*l, m.at(key));
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        read(items[i], scene::item(m.at(key), i));
+      }
+    }
+  };
+  each("cia402", [&](const YAML::Node& x, const std::string& p) { rh.cia402.push_back(readCia402(r, x, p)); });
+  each("mit", [&](const YAML::Node& x, const std::string& p) { rh.impedance.push_back(readImpedance(r, x, p, "mit")); });
+  each("fd", [&](const YAML::Node& x, const std::string& p) { rh.impedance.push_back(readImpedance(r, x, p, "fd")); });
+  each("ft_sensors", [&](const YAML::Node& x, const std::string& p) { rh.ft_sensors.push_back(readSensor(r, x, p)); });
+  each("imus", [&](const YAML::Node& x, const std::string& p) { rh.imus.push_back(readSensor(r, x, p)); });
+  rh.source = m.source();
+  return rh;
+}
+
+HardwareSpec readHardware(const Reader& r, const YAML::Node& n) {
+  const Map m(r, n, "hardware", {"heartbeat_timeout", "feedback_missing_cycles", "buses", "robots"});
+  HardwareSpec h;
+  h.present = true;
+  h.source = m.source();
+  h.heartbeat_timeout_s = m.number("heartbeat_timeout", Bound::Positive, 0.25);
+  h.feedback_missing_cycles = m.integer("feedback_missing_cycles", 1, 1000, 3);
+  scene::UniqueNames bus_names(r, "bus");
+  const std::vector<YAML::Node> buses = r.list(m.require("buses"), m.at("buses"));
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    h.buses.push_back(readBus(r, buses[i], scene::item(m.at("buses"), i)));
+    bus_names.add(h.buses.back().name, buses[i], scene::item(m.at("buses"), i) + ".name");
+  }
+  scene::UniqueNames robot_names(r, "robot entity");
+  const std::vector<YAML::Node> robots = r.list(m.require("robots"), m.at("robots"));
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    h.robots.push_back(readRobot(r, robots[i], scene::item(m.at("robots"), i)));
+    robot_names.add(h.robots.back().entity, robots[i], scene::item(m.at("robots"), i) + ".entity");
+  }
+  return h;
+}
+
+}  // namespace
+
+HardwareSpec readHardwareString(const std::string& text, const std::string& file_name_for_messages) {
+  const YAML::Node doc = scene::parseYamlDocument(text, file_name_for_messages);
+  const Reader r(file_name_for_messages);
+  HardwareSpec h;
+  if (doc.IsMap() && doc["hardware"] && !doc["hardware"].IsNull()) {
+    h = readHardware(r, doc["hardware"]);
+  }
+  h.source.file = file_name_for_messages;
+  return h;
+}
+
+HardwareSpec readHardwareFile(const std::string& path) {
+  return readHardwareString(scene::readTextFile(path), path);
+}
+
+std::string readPlantSimulatorString(const std::string& text, const std::string& file_name_for_messages) {
+  const YAML::Node doc = scene::parseYamlDocument(text, file_name_for_messages);
+  const Reader r(file_name_for_messages);
+  if (!doc.IsMap() || !doc["plant"] || doc["plant"].IsNull()) {
+    return "";
+  }
+  const YAML::Node plant = doc["plant"];
+  if (!plant.IsMap()) {
+    r.fail(plant, "plant", "expected a map, got " + scene::describe(plant));
+  }
+  if (!plant["simulator"]) {
+    return "mujoco";  // a plant section without a simulator describes the MuJoCo plant
+  }
+  const std::string kind = r.name(plant["simulator"], "plant.simulator");
+  if (kind != "ideal" && kind != "mujoco") {
+    r.fail(plant["simulator"], "plant.simulator", "expected mujoco or ideal, got \"" + kind + "\"");
+  }
+  return kind;
+}
+
+}  // namespace mrqp::loop

@@ -1,0 +1,302 @@
+// mrqp-run: runs a scene as a controller (docs/loop.md). The loop reads its drives over CAN,
+// estimates, solves the multi-robot QP and streams setpoints; behind the bus sit the plant and the
+// emulated firmware (--bus sim, one simulated clock: deterministic) or real interfaces.
+#include <mrqp/drivers/socketcan_bus.hpp>
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "alloc_counter.hpp"
+#include "loop/fault_injector.hpp"
+#include "loop/controller.hpp"
+#include "loop/deadline_clock.hpp"
+#include "loop/emulated_rig.hpp"
+#include "loop/hardware_check.hpp"
+#include "loop/hardware_yaml.hpp"
+#include "loop/ideal_plant.hpp"
+#include "loop/log_ring.hpp"
+#include "loop/realtime.hpp"
+#include "loop/scene_override.hpp"
+#include "plant_factory.hpp"
+#include "run_options.hpp"
+#include "run_report.hpp"
+#include "scene/builtin_models.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/yaml_reader.hpp"
+
+using namespace mrqp;
+
+namespace {
+
+/// Drains the log ring into DIR/log.csv until stopped (a non-real-time thread).
+class LogWriter {
+ public:
+  LogWriter(loop::LogRing& ring, const std::string& path) : ring_(ring), row_(ring.width()) {
+    file_ = std::fopen(path.c_str(), "w");
+    if (file_ == nullptr) throw std::runtime_error(path + ": cannot write");
+    const auto& cols = ring.columns();
+    for (std::size_t i = 0; i < cols.size(); ++i) std::fprintf(file_, "%s%s", i ? "," : "", cols[i].c_str());
+    std::fprintf(file_, "\n");
+    thread_ = std::thread([this] { run(); });
+  }
+  ~LogWriter() { stop(); }
+  void stop() {
+    if (thread_.joinable()) {
+      stop_.store(true);
+      thread_.join();
+    }
+    if (file_ != nullptr) {
+      std::fclose(file_);
+      file_ = nullptr;
+    }
+  }
+
+ private:
+  void run() {
+    for (;;) {
+      bool any = false;
+      while (ring_.pop(row_.data())) {
+        any = true;
+        for (std::size_t i = 0; i < row_.size(); ++i) std::fprintf(file_, "%s%.9g", i ? "," : "", row_[i]);
+        std::fprintf(file_, "\n");
+      }
+      if (!any) {
+        if (stop_.load()) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      }
+    }
+  }
+  loop::LogRing& ring_;
+  std::vector<double> row_;
+  FILE* file_ = nullptr;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+std::string flagNames(std::uint32_t flags) { return drivers::fault_flags_str(flags); }
+
+int runMain(int argc, char** argv) {
+  bool help = false;
+  run::RunOptions o;
+  try {
+    o = run::parseRunOptions(argc, argv, &help);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "mrqp-run: %s\n%s", e.what(), run::runUsage());
+    return 2;
+  }
+  if (help) {
+    std::printf("%s", run::runUsage());
+    return 0;
+  }
+  for (std::size_t i = 1; i <= o.out.size(); ++i) {  // mkdir -p
+    if (i == o.out.size() || o.out[i] == '/') {
+      const std::string part = o.out.substr(0, i);
+      if (::mkdir(part.c_str(), 0777) != 0 && errno != EEXIST) {
+        throw std::runtime_error(o.out + ": cannot create the output directory: " + std::strerror(errno));
+      }
+    }
+  }
+
+  // ---- the scene, with --set applied ----
+  std::string text = scene::readTextFile(o.scene);
+  for (const std::string& s : o.sets) text = loop::applySceneOverride(text, o.scene, s);
+  scene::ModelRegistry models;
+  scene::addBuiltinModels(models);
+  const scene::SceneSpec spec = scene::loadSceneString(text, o.scene);
+  scene::Scene sc = scene::buildScene(spec, models);
+  problem::MultiRobotProblem& p = *sc.problem;
+  const double dt = sc.settings.dt;
+  const auto period = static_cast<drivers::TimeNs>(std::llround(dt * 1e9));
+
+  const loop::HardwareSpec hw = loop::readHardwareString(text, o.scene);
+  if (!hw.present) {
+    throw scene::SceneError(o.scene + ":1: hardware: the scene has no hardware section (docs/loop.md)");
+  }
+  const loop::ResolvedHardware rh = loop::resolveHardware(hw, p, dt);
+
+  // ---- the plant ----
+  std::string plant_kind = o.plant;
+  if (plant_kind.empty()) plant_kind = loop::readPlantSimulatorString(text, o.scene);
+  if (plant_kind.empty()) plant_kind = "ideal";
+  std::unique_ptr<loop::Plant> plant = run::makePlant(plant_kind, spec, text, o.scene, models, p);
+  auto* ideal = dynamic_cast<loop::IdealPlant*>(plant.get());
+
+  // ---- the buses ----
+  std::unique_ptr<loop::EmulatedRig> rig;
+  std::vector<std::unique_ptr<drivers::SocketCanBus>> can;
+  std::vector<drivers::Bus*> buses;
+  const bool sim = o.buses.empty();
+  if (sim) {
+    rig = std::make_unique<loop::EmulatedRig>(rh, p, *plant);
+    for (std::size_t b = 0; b < rig->busCount(); ++b) buses.push_back(&rig->master(b));
+  } else {
+    if (o.buses.size() != rh.buses.size()) {
+      throw std::runtime_error("--bus: " + std::to_string(o.buses.size()) + " interfaces given, the hardware section has " +
+                               std::to_string(rh.buses.size()) + " buses");
+    }
+    for (const std::string& name : o.buses) {
+      drivers::SocketCanConfig c;
+      c.interface = name;
+      auto bus = std::make_unique<drivers::SocketCanBus>();
+      std::string err;
+      if (!bus->open(c, &err)) throw std::runtime_error("--bus " + name + ": " + err);
+      buses.push_back(bus.get());
+      can.push_back(std::move(bus));
+    }
+  }
+
+  loop::Controller ctrl(p, rh, buses);
+  std::vector<std::string> task_names(static_cast<std::size_t>(p.taskCapacity()));
+  for (const auto& [name, id] : sc.tasks) task_names[static_cast<std::size_t>(id)] = name;
+  std::vector<std::string> contact_names(static_cast<std::size_t>(p.contactCapacity()));
+  for (const auto& [name, id] : sc.contacts) contact_names[static_cast<std::size_t>(id)] = name;
+  loop::LogRing ring;
+  ctrl.attachLog(ring, task_names, contact_names);
+  ring.freeze(1u << 15);
+  loop::FaultInjector faults(o.faults, rig.get(), ctrl, rh);
+
+  long cycles = o.cycles;
+  if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
+  std::vector<double> cycle_us(static_cast<std::size_t>(cycles), 0.0);
+
+  if (!o.quiet) {
+    std::printf("mrqp-run: %s: %d entities, %zu tasks, %zu contacts; plant %s, %s; %ld cycles of %g ms\n",
+                o.scene.c_str(), p.entityCount(), sc.tasks.size(), sc.contacts.size(), plant->kind(),
+                sim ? "simulated buses" : "SocketCAN", cycles, dt * 1e3);
+    for (const loop::ResolvedBus& b : rh.buses) std::printf("%s", b.report.c_str());
+    for (const std::string& n : ctrl.notices()) std::printf("mrqp-run: note: %s\n", n.c_str());
+  }
+  if (o.realtime) {
+    const loop::RealtimeReport r = loop::setupRealtime();
+    for (const std::string& m : r.messages) std::printf("mrqp-run: realtime: %s\n", m.c_str());
+  }
+  LogWriter writer(ring, o.out + "/log.csv");
+
+  // ---- boot: every device booted and enabled ----
+  loop::DeadlineClock clock(period);
+  const bool paced = o.realtime || !sim;
+  drivers::TimeNs now = paced ? clock.start() : 0;
+  ctrl.startDevices(now);
+  long boot = 0;
+  const long boot_limit = std::lround(10.0 / dt);
+  for (;; ++boot) {
+    if (boot >= boot_limit) {
+      throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
+                               flagNames(ctrl.bootFlags()) + ")");
+    }
+    const bool ready = ctrl.bootCycle(now);
+    if (rig) rig->advanceTo(now + period);
+    now = paced ? clock.wait() : now + period;
+    if (ready) break;
+  }
+  if (!o.quiet) std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
+
+  // ---- the loop ----
+  std::vector<std::uint64_t> busy0;
+  if (rig) {
+    for (std::size_t b = 0; b < rig->busCount(); ++b) busy0.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
+  }
+  const drivers::TimeNs loop_start = now;
+  long misses = 0;
+  const std::uint64_t overruns0 = clock.overruns();
+  const long progress_every = std::max(1L, std::lround(0.5 / dt));
+  for (long k = 0; k < cycles; ++k) {
+    faults.beforeCycle(static_cast<double>(k) * dt, now);
+    run::armAllocationCounter(true);
+    ctrl.cycle(now);
+    run::armAllocationCounter(false);
+    faults.afterCycle();
+    if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
+    const drivers::TimeNs total = ctrl.lastTiming().total_ns;
+    cycle_us[static_cast<std::size_t>(k)] = static_cast<double>(total) * 1e-3;
+    if (!paced && total > period) ++misses;
+    if (rig) rig->advanceTo(now + period);
+    if (!o.quiet && (k % progress_every == 0 || k + 1 == cycles)) {
+      std::fprintf(stderr, "\r  t = %6.2f s  cycle %5.0f µs  qp %s%s   ", static_cast<double>(k) * dt,
+                   cycle_us[static_cast<std::size_t>(k)], ctrl.lastStatus() == qp::QpStatus::Optimal ? "optimal" : "NOT optimal",
+                   ctrl.safeStopped() ? "  SAFE STOP" : "");
+    }
+    now = paced ? clock.wait() : now + period;
+  }
+  if (!o.quiet) std::fprintf(stderr, "\n");
+  if (paced) misses = static_cast<long>(clock.overruns() - overruns0);
+  writer.stop();
+  const double loop_s = static_cast<double>(now - loop_start) * 1e-9;
+
+  // ---- summary ----
+  run::RunSummary s;
+  s.scene = o.scene;
+  s.cycles = cycles;
+  s.period_s = dt;
+  s.deadline_misses = misses;
+  s.allocations_in_loop = run::countedAllocations();
+  s.log_records_dropped = static_cast<long>(ring.dropped());
+  std::vector<double> sorted = cycle_us;
+  std::sort(sorted.begin(), sorted.end());
+  s.median_us = run::percentile(sorted, 0.5);
+  s.p99_us = run::percentile(sorted, 0.99);
+  s.p999_us = run::percentile(sorted, 0.999);
+  s.max_us = sorted.empty() ? 0.0 : sorted.back();
+  if (ctrl.safeStopped()) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%s at t = %.4f s (cycle %llu)%s%s%s%s", loop::stopReasonStr(ctrl.stopReason()),
+                  static_cast<double>(ctrl.stopTime()) * 1e-9, static_cast<unsigned long long>(ctrl.stopCycle()),
+                  ctrl.stopDevice().empty() ? "" : ", device ", ctrl.stopDevice().c_str(),
+                  ctrl.stopFlags() != 0u ? ": " : "", ctrl.stopFlags() != 0u ? flagNames(ctrl.stopFlags()).c_str() : "");
+    s.safe_stop = buf;
+  }
+  for (const auto& [name, id] : sc.tasks) s.task_errors_final.emplace_back(name, p.taskError(id).norm());
+  for (const loop::RobotIo& r : ctrl.robots()) {
+    s.joint_tracking_error_max_rad.emplace_back(r.name, r.tracking_error_max);
+    const problem::Entity& e = p.entity(r.entity);
+    if (e.floatingBase() && sim) {
+      Eigen::VectorXd q(e.nq()), v(e.nv());
+      plant->entityState(plant->entityHandle(r.name), q, v);
+      s.base_estimate_error_m.emplace_back(r.name, (q.head<3>() - e.q().head<3>()).norm());
+    }
+  }
+  for (std::size_t b = 0; b < rh.buses.size(); ++b) {
+    double load = rh.buses[b].utilisation_worst;
+    if (rig && loop_s > 0.0) {
+      load = static_cast<double>(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns) - busy0[b]) * 1e-9 / loop_s;
+    }
+    s.bus_load.emplace_back(rh.buses[b].decl.name, load);
+  }
+  s.faults = faults.records();
+  if (!run::writeSummaryJson(s, o.out + "/summary.json")) throw std::runtime_error(o.out + "/summary.json: cannot write");
+  if (!o.quiet || true) run::printSummary(s);
+  if (o.plots) {
+    std::string err;
+    const std::vector<std::string> pngs = run::writePlots(o.out, ring.columns(), o.scene, &err);
+    if (!err.empty()) std::fprintf(stderr, "mrqp-run: plots: %s\n", err.c_str());
+    if (!o.quiet) {
+      for (const std::string& f : pngs) std::printf("mrqp-run: plot %s\n", f.c_str());
+    }
+  }
+  std::printf("mrqp-run: wrote %s/summary.json and %s/log.csv\n", o.out.c_str(), o.out.c_str());
+  const bool unexplained_stop = ctrl.safeStopped() && o.faults.empty();
+  return unexplained_stop ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return runMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrqp-run: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,31 @@
+// mrqp-run's command line (docs/loop.md).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "loop/fault_injector.hpp"
+
+namespace mrqp::run {
+
+struct RunOptions {
+  std::string scene;
+  std::string out;
+  std::string plant;                  ///< "" = from the scene (ideal when it says nothing)
+  std::vector<std::string> buses;     ///< empty = sim
+  long cycles = -1;
+  double duration = -1.0;
+  bool realtime = false;
+  bool quiet = false;
+  bool plots = true;
+  std::vector<loop::FaultRequest> faults;
+  std::vector<std::string> sets;
+};
+
+/// Parses argv; on a usage error throws std::invalid_argument with the message. `help` is set for
+/// -h/--help.
+RunOptions parseRunOptions(int argc, char** argv, bool* help);
+
+const char* runUsage() noexcept;
+
+}  // namespace mrqp::run

@@ -1,0 +1,42 @@
+// mrqp-run's results: summary.json (docs/loop.md, "summary.json") and the PNG plots of a run
+// (gnuplot over the log).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "loop/fault_injector.hpp"
+
+namespace mrqp::run {
+
+struct RunSummary {
+  std::string scene;
+  long cycles = 0;
+  double period_s = 0.0;
+  long deadline_misses = 0;
+  long allocations_in_loop = 0;
+  long log_records_dropped = 0;
+  double median_us = 0.0, p99_us = 0.0, p999_us = 0.0, max_us = 0.0;
+  std::string safe_stop;  ///< empty: null
+  std::vector<std::pair<std::string, double>> task_errors_final;
+  std::vector<std::pair<std::string, double>> joint_tracking_error_max_rad;
+  std::vector<std::pair<std::string, double>> base_estimate_error_m;
+  std::vector<std::pair<std::string, double>> bus_load;
+  std::vector<loop::FaultRecord> faults;
+};
+
+/// Percentile p (0..1) of sorted values (nearest rank).
+double percentile(const std::vector<double>& sorted, double p);
+
+/// Writes summary.json; false when it cannot be written.
+bool writeSummaryJson(const RunSummary& s, const std::string& path);
+/// The end-of-run text on stdout.
+void printSummary(const RunSummary& s);
+
+/// The PNG plots of a run from DIR/log.csv: task errors, contact forces, command vs feedback,
+/// cycle-time histogram. Returns the files written; `error` says what failed.
+std::vector<std::string> writePlots(const std::string& dir, const std::vector<std::string>& columns,
+                                    const std::string& title, std::string* error);
+
+}  // namespace mrqp::run
