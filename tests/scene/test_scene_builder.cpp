@@ -78,3 +78,34 @@ TEST_CASE("A joint task follows the critically damped law of eq. 26", "[scene]")
   // e(t) = −(1 + ωt) e^{−ωt} with ω = 2 at t = 2 s (the same law as the case study's eq. 44).
   CHECK(p.entity(0).q()(k) == Approx(1.0 - 5.0 * std::exp(-4.0)).margin(2e-3));
 }
+
+TEST_CASE("Every task type of a scene file becomes the task class of that kind", "[scene]") {
+  // One task of each type of the registry, on the Panda and a contact of its hand.
+  const std::string text = std::string(kArm) +
+                           "contacts:\n  - {name: c, entity: arm, frame: panda_hand_tcp, other: ground, "
+                           "points: [[0, 0, 0]], normal: [0, 0, 1]}\n"
+                           "tasks:\n"
+                           "  - {name: a, type: posture, entity: arm}\n"
+                           "  - {name: b, type: com, entity: arm}\n"
+                           "  - {name: c, type: frame_position, entity: arm, frame: panda_hand_tcp}\n"
+                           "  - {name: d, type: frame_orientation, entity: arm, frame: panda_hand_tcp}\n"
+                           "  - {name: e, type: frame_pose, entity: arm, frame: panda_hand_tcp}\n"
+                           "  - {name: f, type: joint, entity: arm, joint: panda_joint4}\n"
+                           "  - {name: g, type: force, contact: c}\n"
+                           "  - {name: h, type: force_min}\n";
+  mrqp::scene::ModelRegistry models;
+  mrqp::scene::addBuiltinModels(models);
+  const auto spec = mrqp::scene::loadSceneString(text, "s.yaml");
+  const auto scene = mrqp::scene::buildScene(spec, models);
+  REQUIRE(spec.tasks.size() == 8);
+  for (const auto& ts : spec.tasks) {
+    INFO(ts.name);
+    CHECK(std::string(scene.problem->task(scene.task(ts.name)).kind()) == ts.type);
+  }
+  // At the start every target is the value at the start: no error.
+  scene.problem->update();
+  for (const auto& ts : spec.tasks) {
+    INFO(ts.name);
+    CHECK(scene.problem->taskError(scene.task(ts.name)).norm() < 1e-12);
+  }
+}
