@@ -76,7 +76,7 @@ struct State {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     q = mrqp::model::sampleConfiguration<M>(rng);
     for (int i = 0; i < M::nv; ++i) {
-      const double lim = std::min(1.0, M::vLimit()[i]);
+      const double lim = std::min(1.0, M::vLimit()[static_cast<std::size_t>(i)]);
       v(i) = lim * u(rng);
     }
     for (int i = 0; i < M::nv; ++i) a(i) = u(rng);

@@ -88,7 +88,7 @@ typename M::ConfigVector sampleConfiguration(Rng& rng) {
     first = 7;
   }
   for (int i = first; i < M::nq; ++i) {
-    double lo = M::qLower()[i], hi = M::qUpper()[i];
+    double lo = M::qLower()[static_cast<std::size_t>(i)], hi = M::qUpper()[static_cast<std::size_t>(i)];
     if (!std::isfinite(lo) || !std::isfinite(hi)) {
       lo = -3.0;
       hi = 3.0;

@@ -1021,11 +1021,11 @@ void QpSolver::removeFromFactorisation(int k) noexcept {
         R_(j, col) = c * r1 + s * r2;
         R_(j + 1, col) = -s * r1 + c * r2;
       }
-      double* a = J_.col(j).data();
+      double* a2 = J_.col(j).data();
       double* b2 = J_.col(j + 1).data();
       for (int i = 0; i < n; ++i) {
-        const double ai = a[i], bi = b2[i];
-        a[i] = c * ai + s * bi;
+        const double ai = a2[i], bi = b2[i];
+        a2[i] = c * ai + s * bi;
         b2[i] = c * bi - s * ai;
       }
     }

@@ -783,7 +783,7 @@ class ColladaReader {
     if (const auto tc = child(source, "technique_common")) accessor = child(*tc, "accessor");
     if (accessor) {
       std::size_t params = 0;
-      for (const std::size_t c : doc_[*accessor].children) params += doc_[c].name == "param" ? 1 : 0;
+      for (const std::size_t c : doc_[*accessor].children) if (doc_[c].name == "param") ++params;
       stride = sizeAttr(*accessor, "stride", std::max<std::size_t>(params, 3));
       offset = sizeAttr(*accessor, "offset", 0);
     }

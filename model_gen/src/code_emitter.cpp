@@ -67,7 +67,7 @@ std::array<std::string, 3> crossRuntimeConst(const std::string& w, int off, cons
     const int j = (i + 1) % 3, k = (i + 2) % 3;
     LinearExpr e;
     e.add(a(k), W(j)).add(-a(j), W(k));
-    out[i] = e.str();
+    out[idx(i)] = e.str();
   }
   return out;
 }
@@ -82,11 +82,11 @@ std::array<std::string, 6> inertiaTimes(const BodyInertia& in, const std::string
     LinearExpr n;
     for (int c = 0; c < 3; ++c) n.add(in.I(i, c), M(c));
     n.add(h(j), M(3 + k)).add(-h(k), M(3 + j));  // (h × v)_i
-    out[i] = n.str();
+    out[idx(i)] = n.str();
     LinearExpr f;
     f.add(in.mass, M(3 + i));
     f.add(-h(j), M(k)).add(h(k), M(j));  // −(h × ω)_i
-    out[3 + i] = f.str();
+    out[idx(3 + i)] = f.str();
   }
   return out;
 }
@@ -104,7 +104,7 @@ class Emitter {
   std::string source() const;
 
  private:
-  const TreeJoint& joint(int b) const { return t_.bodies[b].joint; }
+  const TreeJoint& joint(int b) const { return t_.bodies[idx(b)].joint; }
   bool moving(int b) const {
     const auto k = joint(b).kind;
     return k == JointKind::Revolute || k == JointKind::Prismatic;
@@ -234,29 +234,29 @@ void Emitter::emitTables(std::ostream& o) const {
     o << "};\n";
   };
   list("const char*", "joint_names", static_cast<int>(t_.joint_names.size()),
-       [&](int i) { return cstring(t_.joint_names[i]); });
-  list("const char*", "body_names", nb_, [&](int i) { return cstring(t_.bodies[i].name); });
-  list("int", "body_parent", nb_, [&](int i) { return str(t_.bodies[i].parent); });
+       [&](int i) { return cstring(t_.joint_names[idx(i)]); });
+  list("const char*", "body_names", nb_, [&](int i) { return cstring(t_.bodies[idx(i)].name); });
+  list("int", "body_parent", nb_, [&](int i) { return str(t_.bodies[idx(i)].parent); });
   const int nf = static_cast<int>(t_.frames.size());
-  list("const char*", "frame_names", nf, [&](int i) { return cstring(t_.frames[i].name); });
-  list("int", "frame_body", nf, [&](int i) { return str(t_.frames[i].body); });
-  list("double", "q_lower", t_.nq, [&](int i) { return limitLiteral(t_.q_lower[i]); });
-  list("double", "q_upper", t_.nq, [&](int i) { return limitLiteral(t_.q_upper[i]); });
-  list("double", "v_limit", t_.nv, [&](int i) { return limitLiteral(t_.v_limit[i]); });
-  list("double", "effort_limit", t_.nv, [&](int i) { return limitLiteral(t_.effort_limit[i]); });
+  list("const char*", "frame_names", nf, [&](int i) { return cstring(t_.frames[idx(i)].name); });
+  list("int", "frame_body", nf, [&](int i) { return str(t_.frames[idx(i)].body); });
+  list("double", "q_lower", t_.nq, [&](int i) { return limitLiteral(t_.q_lower[idx(i)]); });
+  list("double", "q_upper", t_.nq, [&](int i) { return limitLiteral(t_.q_upper[idx(i)]); });
+  list("double", "v_limit", t_.nv, [&](int i) { return limitLiteral(t_.v_limit[idx(i)]); });
+  list("double", "effort_limit", t_.nv, [&](int i) { return limitLiteral(t_.effort_limit[idx(i)]); });
 
   o << "\nnamespace {\n";
   o << "constexpr double frame_R[" << nf << "][9] = {";
   for (int i = 0; i < nf; ++i) {
     o << (i ? ",\n    " : "\n    ") << "{";
-    for (int k = 0; k < 9; ++k) o << (k ? ", " : "") << literal(snap(t_.frames[i].R(k / 3, k % 3)));
+    for (int k = 0; k < 9; ++k) o << (k ? ", " : "") << literal(snap(t_.frames[idx(i)].R(k / 3, k % 3)));
     o << "}";
   }
   o << "};\n";
   o << "constexpr double frame_p[" << nf << "][3] = {";
   for (int i = 0; i < nf; ++i) {
     o << (i ? ",\n    " : "\n    ") << "{";
-    for (int k = 0; k < 3; ++k) o << (k ? ", " : "") << literal(snap(t_.frames[i].p(k)));
+    for (int k = 0; k < 3; ++k) o << (k ? ", " : "") << literal(snap(t_.frames[idx(i)].p(k)));
     o << "}";
   }
   o << "};\n";
@@ -305,7 +305,7 @@ void Emitter::emitLocalTransforms(std::ostream& o) const {
     o << "  d.Rl[0].setIdentity();\n  d.pl[0].setZero();\n";
   }
   for (int b = 1; b < nb_; ++b) {
-    const TreeBody& body = t_.bodies[b];
+    const TreeBody& body = t_.bodies[idx(b)];
     const TreeJoint& j = body.joint;
     const Vector3d a = j.axis;
     o << "  {  // body " << b << " '" << body.name << "', joint '" << j.name << "'"
@@ -344,7 +344,7 @@ void Emitter::emitLocalTransforms(std::ostream& o) const {
   o << "}\n\n";
   o << "inline void worldPoses(Data& d) noexcept {\n  d.R[0] = d.Rl[0];\n  d.p[0] = d.pl[0];\n";
   for (int b = 1; b < nb_; ++b) {
-    const int p = t_.bodies[b].parent;
+    const int p = t_.bodies[idx(b)].parent;
     o << "  composePose(d.R[" << p << "].data(), d.p[" << p << "].data(), d.Rl[" << b << "].data(), d.pl[" << b
       << "].data(), d.R[" << b << "].data(), d.p[" << b << "].data());\n";
   }
@@ -359,6 +359,7 @@ void Emitter::emitForwardPass(std::ostream& o) const {
   o << "inline void forwardPass(Data& d, const TangentVector& vv, const TangentVector* acc, bool gravity,\n"
        "                        bool forces, std::array<Motion, nbodies>& A) noexcept {\n"
        "  const double* v = vv.data();\n  const double* aa = acc ? acc->data() : nullptr;\n  (void)v;\n";
+  if (nb_ == 1) o << "  (void)aa;  // no joint: the root alone\n";
   if (floatingRoot()) {
     o << "  d.v[0] = vv.head<6>();\n"
          "  if (acc) A[0] = acc->head<6>(); else A[0].setZero();\n"
@@ -369,7 +370,7 @@ void Emitter::emitForwardPass(std::ostream& o) const {
          "  if (gravity) A[0].tail<3>() = -d.gravity;\n";
   }
   for (int b = 1; b < nb_; ++b) {
-    const TreeBody& body = t_.bodies[b];
+    const TreeBody& body = t_.bodies[idx(b)];
     const TreeJoint& j = body.joint;
     const int p = body.parent;
     const bool parentAtRest = p == 0 && !floatingRoot();
@@ -393,10 +394,10 @@ void Emitter::emitForwardPass(std::ostream& o) const {
       const auto va = crossRuntimeConst("vb", 3, j.axis);
       for (int c = 0; c < 3; ++c) {
         if (j.kind == JointKind::Revolute) {
-          if (wa[c] != "0.0") o << "    ab[" << c << "] += qd * (" << wa[c] << ");\n";
-          if (va[c] != "0.0") o << "    ab[" << 3 + c << "] += qd * (" << va[c] << ");\n";
-        } else if (wa[c] != "0.0") {
-          o << "    ab[" << 3 + c << "] += qd * (" << wa[c] << ");\n";
+          if (wa[idx(c)] != "0.0") o << "    ab[" << c << "] += qd * (" << wa[idx(c)] << ");\n";
+          if (va[idx(c)] != "0.0") o << "    ab[" << 3 + c << "] += qd * (" << va[idx(c)] << ");\n";
+        } else if (wa[idx(c)] != "0.0") {
+          o << "    ab[" << 3 + c << "] += qd * (" << wa[idx(c)] << ");\n";
         }
       }
     }
@@ -404,7 +405,7 @@ void Emitter::emitForwardPass(std::ostream& o) const {
   }
   o << "  if (!forces) return;\n";
   for (int b = 0; b < nb_; ++b) {
-    const BodyInertia& in = t_.bodies[b].inertia;
+    const BodyInertia& in = t_.bodies[idx(b)].inertia;
     if (isZeroInertia(in) || (b == 0 && !floatingRoot())) {
       o << "  d.f[" << b << "].setZero();\n";
       continue;
@@ -429,8 +430,9 @@ void Emitter::emitForwardPass(std::ostream& o) const {
 void Emitter::emitBackwardTorques(std::ostream& o) const {
   o << "inline void backwardTorques(Data& d, TangentVector& tv) noexcept {\n  tv.setZero();\n"
        "  double* tau = tv.data();\n";
+  if (nb_ == 1) o << "  (void)tau;  // no joint: the root alone\n";
   for (int b = nb_ - 1; b >= 1; --b) {
-    const TreeBody& body = t_.bodies[b];
+    const TreeBody& body = t_.bodies[idx(b)];
     const TreeJoint& j = body.joint;
     const int off = j.kind == JointKind::Revolute ? 0 : 3;
     o << "  {\n    const double* f = d.f[" << b << "].data();\n    tau[" << j.v_index
@@ -450,12 +452,13 @@ void Emitter::emitCrba(std::ostream& o) const {
   o << "void crba(Data& d, const ConfigVector& q, MassMatrix& M) noexcept {\n"
        "  localTransforms(d, q);\n  M.setZero();\n"
        "  for (int b = 0; b < nbodies; ++b) {\n"
-       "    d.cm[b] = bodyMass[b];\n"
-       "    d.ch[b] = Eigen::Map<const Eigen::Vector3d>(bodyFirstMoment[b]);\n"
-       "    d.cI[b] = Eigen::Map<const Eigen::Matrix3d>(bodyRotationalInertia[b]);\n  }\n"
+       "    d.cm[ix(b)] = bodyMass[b];\n"
+       "    d.ch[ix(b)] = Eigen::Map<const Eigen::Vector3d>(bodyFirstMoment[b]);\n"
+       "    d.cI[ix(b)] = Eigen::Map<const Eigen::Matrix3d>(bodyRotationalInertia[b]);\n  }\n"
        "  double Fp[6];\n";
+  if (nb_ == 1) o << "  (void)Fp;  // no joint: the root alone\n";
   for (int b = nb_ - 1; b >= 1; --b) {
-    const TreeBody& body = t_.bodies[b];
+    const TreeBody& body = t_.bodies[idx(b)];
     const TreeJoint& j = body.joint;
     const int vi = j.v_index;
     o << "  {  // body " << b << " '" << body.name << "'\n"
@@ -468,10 +471,10 @@ void Emitter::emitCrba(std::ostream& o) const {
         for (int c = 0; c < 3; ++c) e.add(j.axis(c), element("I", k + 3 * c));
         o << "    Fp[" << k << "] = " << e.str() << ";\n";
       }
-      for (int k = 0; k < 3; ++k) o << "    Fp[" << 3 + k << "] = -(" << ha[k] << ");\n";
+      for (int k = 0; k < 3; ++k) o << "    Fp[" << 3 + k << "] = -(" << ha[idx(k)] << ");\n";
     } else {
       // F = (h × a, m a)
-      for (int k = 0; k < 3; ++k) o << "    Fp[" << k << "] = " << ha[k] << ";\n";
+      for (int k = 0; k < 3; ++k) o << "    Fp[" << k << "] = " << ha[idx(k)] << ";\n";
       for (int k = 0; k < 3; ++k) {
         LinearExpr e;
         e.add(j.axis(k), "d.cm[" + str(b) + "]");
@@ -508,7 +511,7 @@ void Emitter::emitCrba(std::ostream& o) const {
 void Emitter::emitChainTables(std::ostream& o) const {
   o << "constexpr double S6[" << nb_ << "][6] = {";
   for (int b = 0; b < nb_; ++b) {
-    const TreeJoint& j = t_.bodies[b].joint;
+    const TreeJoint& j = t_.bodies[idx(b)].joint;
     double s[6] = {0, 0, 0, 0, 0, 0};
     if (j.kind == JointKind::Revolute)
       for (int k = 0; k < 3; ++k) s[k] = j.axis(k);
@@ -524,21 +527,21 @@ void Emitter::emitChainTables(std::ostream& o) const {
     for (int b = 0; b < nb_; ++b) o << (b ? ", " : "") << item(b);
     o << "};\n";
   };
-  list("int", "vIndex", [&](int b) { return str(b == 0 ? -1 : t_.bodies[b].joint.v_index); });
-  list("double", "gain", [&](int b) { return literal(t_.bodies[b].joint.multiplier); });
-  list("int", "parentOf", [&](int b) { return str(t_.bodies[b].parent); });
-  std::vector<double> msub(nb_, 0.0);
+  list("int", "vIndex", [&](int b) { return str(b == 0 ? -1 : t_.bodies[idx(b)].joint.v_index); });
+  list("double", "gain", [&](int b) { return literal(t_.bodies[idx(b)].joint.multiplier); });
+  list("int", "parentOf", [&](int b) { return str(t_.bodies[idx(b)].parent); });
+  std::vector<double> msub(idx(nb_), 0.0);
   for (int b = nb_ - 1; b >= 0; --b) {
-    msub[b] += t_.bodies[b].inertia.mass;
-    if (t_.bodies[b].parent >= 0) msub[t_.bodies[b].parent] += msub[b];
+    msub[idx(b)] += t_.bodies[idx(b)].inertia.mass;
+    if (t_.bodies[idx(b)].parent >= 0) msub[idx(t_.bodies[idx(b)].parent)] += msub[idx(b)];
   }
-  list("double", "subtreeMass", [&](int b) { return literal(msub[b]); });
+  list("double", "subtreeMass", [&](int b) { return literal(msub[idx(b)]); });
   o << "constexpr double bodyMass[" << nb_ << "] = {";
-  for (int b = 0; b < nb_; ++b) o << (b ? ", " : "") << literal(t_.bodies[b].inertia.mass);
+  for (int b = 0; b < nb_; ++b) o << (b ? ", " : "") << literal(t_.bodies[idx(b)].inertia.mass);
   o << "};\n";
   o << "constexpr double bodyRotationalInertia[" << nb_ << "][9] = {";
   for (int b = 0; b < nb_; ++b) {
-    const Matrix3d& I = t_.bodies[b].inertia.I;
+    const Matrix3d& I = t_.bodies[idx(b)].inertia.I;
     o << (b ? ",\n    " : "\n    ") << "{";
     for (int k = 0; k < 9; ++k) o << (k ? ", " : "") << literal(I(k % 3, k / 3));
     o << "}";
@@ -546,7 +549,7 @@ void Emitter::emitChainTables(std::ostream& o) const {
   o << "};\n";
   o << "constexpr double bodyFirstMoment[" << nb_ << "][3] = {";
   for (int b = 0; b < nb_; ++b) {
-    const Vector3d& h = t_.bodies[b].inertia.h;
+    const Vector3d& h = t_.bodies[idx(b)].inertia.h;
     o << (b ? ", " : "") << "{" << literal(h(0)) << ", " << literal(h(1)) << ", " << literal(h(2)) << "}";
   }
   o << "};\n\n";
@@ -556,7 +559,7 @@ void Emitter::emitIntegrate(std::ostream& o) const {
   o << "void integrate(const ConfigVector& q, const TangentVector& v, double dt, ConfigVector& out) noexcept {\n"
        "  out = q;\n";
   for (int i = 0; i < static_cast<int>(t_.bodies.size()); ++i) {
-    const TreeJoint& j = t_.bodies[i].joint;
+    const TreeJoint& j = t_.bodies[idx(i)].joint;
     if ((j.kind == JointKind::Revolute || j.kind == JointKind::Prismatic) && !j.mimic)
       o << "  out(" << j.q_index << ") += v(" << j.v_index << ") * dt;\n";
   }

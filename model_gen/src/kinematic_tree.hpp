@@ -3,10 +3,15 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace mrqp::gen {
+
+/// The element position of a body, frame or coordinate index (an int: -1 means "none", e.g. the
+/// root's parent) in the tree's std::vector members; only for indices already known to be >= 0.
+inline std::size_t idx(int i) { return static_cast<std::size_t>(i); }
 
 /// Inertia of a body about its own origin, in its own frame: mass, first moment h = m·c and
 /// rotational inertia about the origin.

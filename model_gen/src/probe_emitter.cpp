@@ -57,12 +57,12 @@ int main() {
               m::floating_base ? "true" : "false");
   for (int i = 0; i < m::njoints; ++i) {
     if (i) std::printf(",");
-    string(m::joint_names[i]);
+    string(m::joint_names[static_cast<std::size_t>(i)]);
   }
   std::printf("],\"frames\":[");
   for (int i = 0; i < m::nframes; ++i) {
     if (i) std::printf(",");
-    string(m::frame_names[i]);
+    string(m::frame_names[static_cast<std::size_t>(i)]);
   }
   std::printf("]}\n");
   std::fflush(stdout);
@@ -98,9 +98,9 @@ int main() {
     }
     m::ConfigVector q;
     m::TangentVector v, a, N, tau;
-    for (int i = 0; i < m::nq; ++i) q(i) = x[i];
-    for (int i = 0; i < m::nv; ++i) v(i) = x[m::nq + i];
-    for (int i = 0; i < m::nv; ++i) a(i) = x[m::nq + m::nv + i];
+    for (int i = 0; i < m::nq; ++i) q(i) = x[static_cast<std::size_t>(i)];
+    for (int i = 0; i < m::nv; ++i) v(i) = x[static_cast<std::size_t>(m::nq + i)];
+    for (int i = 0; i < m::nv; ++i) a(i) = x[static_cast<std::size_t>(m::nq + m::nv + i)];
     m::crba(data, q, M);
     m::nonLinearEffects(data, q, v, N);
     m::rnea(data, q, v, a, tau);
@@ -127,7 +127,7 @@ int main() {
       if (qr.w() < 0) qr.coeffs() = -qr.coeffs();
       const double pv[7] = {pose.p(0), pose.p(1), pose.p(2), qr.w(), qr.x(), qr.y(), qr.z()};
       if (f) std::printf(",");
-      string(m::frame_names[f]);
+      string(m::frame_names[static_cast<std::size_t>(f)]);
       std::printf(":");
       array(pv, 7);
     }

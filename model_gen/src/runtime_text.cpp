@@ -6,7 +6,10 @@ namespace mrqp::gen {
 // frame_R is row-major, Rf(i, j) = frame_R[f][3 i + j]; nv×k Eigen matrices are column-major.
 
 const char* runtimeKernels() {
-  return R"(/// out = R x (R column-major).
+  return R"(/// The std::array position of a body or frame index (an int, >= 0 where it is used).
+inline constexpr std::size_t ix(int i) noexcept { return static_cast<std::size_t>(i); }
+
+/// out = R x (R column-major).
 inline void rotate(const double* R, const double* x, double* out) noexcept {
   for (int i = 0; i < 3; ++i) out[i] = R[i] * x[0] + R[i + 3] * x[1] + R[i + 6] * x[2];
 }
@@ -105,7 +108,7 @@ inline void chainToRoot(const Data& d, int b, const double* F0, MassMatrix& M) n
     const int p = parentOf[c];
     if (p < 0 || (p == 0 && !floating_base)) break;
     double G[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    forceToParent(d.Rl[c].data(), d.pl[c].data(), F, G);
+    forceToParent(d.Rl[ix(c)].data(), d.pl[ix(c)].data(), F, G);
     for (int k = 0; k < 6; ++k) F[k] = G[k];
     c = p;
     if (c == 0) {
@@ -126,13 +129,13 @@ inline void chainToRoot(const Data& d, int b, const double* F0, MassMatrix& M) n
 /// Composite inertia of body b added to its parent p:
 /// I_p += E I Eᵀ − (Eh rᵀ + r Ehᵀ) + 2 (r·Eh) 1 − m (r rᵀ − |r|² 1), h_p += Eh + m r, m_p += m.
 inline void addCompositeToParent(Data& d, int b, int p) noexcept {
-  const double* E = d.Rl[b].data();
-  const double* r = d.pl[b].data();
-  const double* I = d.cI[b].data();
-  double* Ip = d.cI[p].data();
-  const double m = d.cm[b];
+  const double* E = d.Rl[ix(b)].data();
+  const double* r = d.pl[ix(b)].data();
+  const double* I = d.cI[ix(b)].data();
+  double* Ip = d.cI[ix(p)].data();
+  const double m = d.cm[ix(b)];
   double Eh[3];
-  rotate(E, d.ch[b].data(), Eh);
+  rotate(E, d.ch[ix(b)].data(), Eh);
   double EI[9];  // E I, column-major
   for (int j = 0; j < 3; ++j) rotate(E, I + 3 * j, EI + 3 * j);
   const double rEh = r[0] * Eh[0] + r[1] * Eh[1] + r[2] * Eh[2];
@@ -144,9 +147,9 @@ inline void addCompositeToParent(Data& d, int b, int p) noexcept {
       if (i == j) x += 2.0 * rEh + m * rr;
       Ip[i + 3 * j] += x;
     }
-  double* hp = d.ch[p].data();
+  double* hp = d.ch[ix(p)].data();
   for (int i = 0; i < 3; ++i) hp[i] += Eh[i] + m * r[i];
-  d.cm[p] += m;
+  d.cm[ix(p)] += m;
 }
 
 /// World-aligned Jacobian columns of the world point pt carried by body b (added to J).
@@ -154,9 +157,9 @@ inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) no
   double* Jp = J.data();
   for (int c = b; c > 0; c = parentOf[c]) {
     double w[3], u[3], dp[3], wxd[3];
-    rotate(d.R[c].data(), S6[c], w);
-    rotate(d.R[c].data(), S6[c] + 3, u);
-    for (int i = 0; i < 3; ++i) dp[i] = pt[i] - d.p[c][i];
+    rotate(d.R[ix(c)].data(), S6[c], w);
+    rotate(d.R[ix(c)].data(), S6[c] + 3, u);
+    for (int i = 0; i < 3; ++i) dp[i] = pt[i] - d.p[ix(c)][i];
     cross(w, dp, wxd);
     double* col = Jp + 6 * vIndex[c];
     const double g = gain[c];
@@ -200,7 +203,7 @@ inline void bodyToFrame(int frame, const double* x, double* out) noexcept {
 const char* runtimePublicFunctions() {
   return R"(int frameIndex(const char* name) noexcept {
   for (int i = 0; i < nframes; ++i)
-    if (std::strcmp(frame_names[i], name) == 0) return i;
+    if (std::strcmp(frame_names[ix(i)], name) == 0) return i;
   return -1;
 }
 
@@ -216,9 +219,9 @@ void forwardKinematics(Data& d, const ConfigVector& q, const TangentVector& v) n
 }
 
 Pose framePose(const Data& d, int frame) noexcept {
-  const int b = frame_body[frame];
+  const int b = frame_body[ix(frame)];
   const double* Rf = frame_R[frame];
-  const double* Rb = d.R[b].data();
+  const double* Rb = d.R[ix(b)].data();
   Pose out;
   double* R = out.R.data();
   for (int j = 0; j < 3; ++j) {
@@ -226,17 +229,17 @@ Pose framePose(const Data& d, int frame) noexcept {
     rotate(Rb, col, R + 3 * j);
   }
   rotate(Rb, frame_p[frame], out.p.data());
-  for (int i = 0; i < 3; ++i) out.p(i) += d.p[b](i);
+  for (int i = 0; i < 3; ++i) out.p(i) += d.p[ix(b)](i);
   return out;
 }
 
 void frameJacobian(const Data& d, int frame, const Eigen::Vector3d& point, ReferenceFrame rf,
                    Jacobian& J) noexcept {
-  const int b = frame_body[frame];
+  const int b = frame_body[ix(frame)];
   double r[3], pt[3];
   pointOnBody(frame, point.data(), r);
-  rotate(d.R[b].data(), r, pt);
-  for (int i = 0; i < 3; ++i) pt[i] += d.p[b](i);
+  rotate(d.R[ix(b)].data(), r, pt);
+  for (int i = 0; i < 3; ++i) pt[i] += d.p[ix(b)](i);
   J.setZero();
   bodyJacobian(d, b, pt, J);
   if (rf == ReferenceFrame::Local) {
@@ -245,7 +248,7 @@ void frameJacobian(const Data& d, int frame, const Eigen::Vector3d& point, Refer
       double x[3];
       for (int h = 0; h < 2; ++h) {
         double* seg = Jp + 6 * c + 3 * h;
-        rotateT(d.R[b].data(), seg, x);  // world -> body
+        rotateT(d.R[ix(b)].data(), seg, x);  // world -> body
         bodyToFrame(frame, x, seg);      // body -> frame
       }
     }
@@ -254,12 +257,12 @@ void frameJacobian(const Data& d, int frame, const Eigen::Vector3d& point, Refer
 
 Motion frameBiasAcceleration(const Data& d, int frame, const Eigen::Vector3d& point,
                              ReferenceFrame rf) noexcept {
-  const int b = frame_body[frame];
+  const int b = frame_body[ix(frame)];
   double r[3];
   pointOnBody(frame, point.data(), r);
-  const double* w = d.v[b].data();
+  const double* w = d.v[ix(b)].data();
   const double* vl = w + 3;
-  const double* dw = d.abias[b].data();
+  const double* dw = d.abias[ix(b)].data();
   const double* dl = dw + 3;
   double spatial[3], t[3];
   cross(dw, r, t);
@@ -274,8 +277,8 @@ Motion frameBiasAcceleration(const Data& d, int frame, const Eigen::Vector3d& po
     for (int i = 0; i < 3; ++i) vp[i] = vl[i] + wr[i];
     cross(w, vp, wvp);
     for (int i = 0; i < 3; ++i) classical[i] = spatial[i] + wvp[i];
-    rotate(d.R[b].data(), dw, out.data());
-    rotate(d.R[b].data(), classical, out.data() + 3);
+    rotate(d.R[ix(b)].data(), dw, out.data());
+    rotate(d.R[ix(b)].data(), classical, out.data() + 3);
   }
   return out;
 }
@@ -297,8 +300,8 @@ Eigen::Vector3d centerOfMass(const Data& d) noexcept {
   double s[3] = {0.0, 0.0, 0.0};
   for (int b = 0; b < nbodies; ++b) {
     double Rh[3];
-    rotate(d.R[b].data(), bodyFirstMoment[b], Rh);
-    for (int i = 0; i < 3; ++i) s[i] += bodyMass[b] * d.p[b](i) + Rh[i];
+    rotate(d.R[ix(b)].data(), bodyFirstMoment[b], Rh);
+    for (int i = 0; i < 3; ++i) s[i] += bodyMass[b] * d.p[ix(b)](i) + Rh[i];
   }
   const double inv = totalMass() > 0.0 ? 1.0 / totalMass() : 0.0;
   return Eigen::Vector3d(s[0] * inv, s[1] * inv, s[2] * inv);
@@ -310,17 +313,17 @@ void comJacobian(Data& d, ComJacobian& Jc) noexcept {
   const double inv = totalMass() > 0.0 ? 1.0 / totalMass() : 0.0;
   for (int b = 0; b < nbodies; ++b) {
     double Rh[3];
-    rotate(d.R[b].data(), bodyFirstMoment[b], Rh);
-    for (int i = 0; i < 3; ++i) d.ch[b](i) = bodyMass[b] * d.p[b](i) + Rh[i];
+    rotate(d.R[ix(b)].data(), bodyFirstMoment[b], Rh);
+    for (int i = 0; i < 3; ++i) d.ch[ix(b)](i) = bodyMass[b] * d.p[ix(b)](i) + Rh[i];
   }
-  for (int b = nbodies - 1; b > 0; --b) d.ch[parentOf[b]] += d.ch[b];
+  for (int b = nbodies - 1; b > 0; --b) d.ch[ix(parentOf[b])] += d.ch[ix(b)];
   Jc.setZero();
   double* Jp = Jc.data();
   for (int b = 1; b < nbodies; ++b) {
     double w[3], u[3], rel[3], wr[3];
-    rotate(d.R[b].data(), S6[b], w);
-    rotate(d.R[b].data(), S6[b] + 3, u);
-    for (int i = 0; i < 3; ++i) rel[i] = d.ch[b](i) - subtreeMass[b] * d.p[b](i);
+    rotate(d.R[ix(b)].data(), S6[b], w);
+    rotate(d.R[ix(b)].data(), S6[b] + 3, u);
+    for (int i = 0; i < 3; ++i) rel[i] = d.ch[ix(b)](i) - subtreeMass[b] * d.p[ix(b)](i);
     cross(w, rel, wr);
     double* col = Jp + 3 * vIndex[b];
     for (int i = 0; i < 3; ++i) col[i] += gain[b] * inv * (wr[i] + subtreeMass[b] * u[i]);
@@ -348,7 +351,7 @@ void regressor(Data& d, const ConfigVector& q, const TangentVector& v, const Tan
   double* Yp = Y.data();
   double A[6][10];
   for (int b = floating_base ? 0 : 1; b < nbodies; ++b) {
-    bodyRegressor(d.v[b].data(), d.a[b].data(), A);
+    bodyRegressor(d.v[ix(b)].data(), d.a[ix(b)].data(), A);
     for (int c = b;;) {
       if (c == 0) {
         for (int i = 0; i < 6; ++i)
@@ -365,7 +368,7 @@ void regressor(Data& d, const ConfigVector& q, const TangentVector& v, const Tan
       for (int k = 0; k < 10; ++k) {
         const double f[6] = {A[0][k], A[1][k], A[2][k], A[3][k], A[4][k], A[5][k]};
         double g[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-        forceToParent(d.Rl[c].data(), d.pl[c].data(), f, g);
+        forceToParent(d.Rl[ix(c)].data(), d.pl[ix(c)].data(), f, g);
         for (int i = 0; i < 6; ++i) A[i][k] = g[i];
       }
       c = p;

@@ -293,7 +293,7 @@ class TreeBuilder {
     frame.R = X_body_link.R;
     frame.p = X_body_link.p;
     tree_.frames.push_back(frame);
-    addInertia(tree_.bodies[body].inertia, linkInertia(source_, link, opt_.allow_nonphysical_inertia, tree_.warnings), X_body_link);
+    addInertia(tree_.bodies[idx(body)].inertia, linkInertia(source_, link, opt_.allow_nonphysical_inertia, tree_.warnings), X_body_link);
     addCollisions(link, body, X_body_link);
 
     std::vector<urdf::JointSharedPtr> children(link.child_joints.begin(), link.child_joints.end());
@@ -359,7 +359,7 @@ class TreeBuilder {
   void resolveMimics() {
     std::map<std::string, int> byName;
     for (int i = 0; i < static_cast<int>(tree_.bodies.size()); ++i)
-      if (!tree_.bodies[i].joint.name.empty()) byName[tree_.bodies[i].joint.name] = i;
+      if (!tree_.bodies[idx(i)].joint.name.empty()) byName[tree_.bodies[idx(i)].joint.name] = i;
     for (auto& b : tree_.bodies) {
       TreeJoint& j = b.joint;
       if (!j.mimic) continue;
@@ -372,7 +372,7 @@ class TreeBuilder {
         auto it = byName.find(target);
         if (it == byName.end())
           fail(source_, quoted("joint", j.name) + ": mimic refers to joint '" + target + "' which is not in the tree");
-        const TreeJoint& t = tree_.bodies[it->second].joint;
+        const TreeJoint& t = tree_.bodies[idx(it->second)].joint;
         if (!t.mimic) {
           j.q_index = t.q_index;
           j.v_index = t.v_index;
@@ -391,24 +391,24 @@ class TreeBuilder {
 
   void warnMasslessSubtrees() {
     const int n = static_cast<int>(tree_.bodies.size());
-    std::vector<double> subtreeMass(n, 0.0);
-    std::vector<double> subtreeInertia(n, 0.0);
+    std::vector<double> subtreeMass(idx(n), 0.0);
+    std::vector<double> subtreeInertia(idx(n), 0.0);
     for (int i = n - 1; i >= 0; --i) {
-      subtreeMass[i] += tree_.bodies[i].inertia.mass;
-      subtreeInertia[i] += tree_.bodies[i].inertia.I.trace();
-      if (tree_.bodies[i].parent >= 0) {
-        subtreeMass[tree_.bodies[i].parent] += subtreeMass[i];
-        subtreeInertia[tree_.bodies[i].parent] += subtreeInertia[i];
+      subtreeMass[idx(i)] += tree_.bodies[idx(i)].inertia.mass;
+      subtreeInertia[idx(i)] += tree_.bodies[idx(i)].inertia.I.trace();
+      if (tree_.bodies[idx(i)].parent >= 0) {
+        subtreeMass[idx(tree_.bodies[idx(i)].parent)] += subtreeMass[idx(i)];
+        subtreeInertia[idx(tree_.bodies[idx(i)].parent)] += subtreeInertia[idx(i)];
       }
     }
     // A coordinate is singular when every joint it drives (itself and its mimics) moves no mass.
     std::map<int, std::pair<bool, int>> coordinate;  // v index -> (all massless, number of mimics)
     std::map<int, std::string> coordinateName;
     for (int i = 0; i < n; ++i) {
-      const TreeJoint& j = tree_.bodies[i].joint;
+      const TreeJoint& j = tree_.bodies[idx(i)].joint;
       if (j.kind != JointKind::Revolute && j.kind != JointKind::Prismatic) continue;
       auto [it, inserted] = coordinate.emplace(j.v_index, std::make_pair(true, 0));
-      it->second.first = it->second.first && subtreeMass[i] == 0.0 && subtreeInertia[i] == 0.0;
+      it->second.first = it->second.first && subtreeMass[idx(i)] == 0.0 && subtreeInertia[idx(i)] == 0.0;
       if (j.mimic)
         ++it->second.second;
       else

@@ -101,7 +101,7 @@ std::vector<Triangle> tetraTriangles() {
 // The distinct corners in order of first appearance in tetraTriangles().
 std::vector<Vec3> tetraVertices() {
   std::vector<Vec3> v;
-  for (const std::size_t i : {0, 2, 1, 3}) v.emplace_back(kTetra[i][0], kTetra[i][1], kTetra[i][2]);
+  for (const std::size_t i : {std::size_t{0}, std::size_t{2}, std::size_t{1}, std::size_t{3}}) v.emplace_back(kTetra[i][0], kTetra[i][1], kTetra[i][2]);
   return v;
 }
 

@@ -32,6 +32,9 @@ using Eigen::Vector3d;
 using Eigen::VectorXd;
 using mrqp::test::ReferenceModel;
 
+/// A vector or std::array position from an int loop index.
+std::size_t ix(int i) { return static_cast<std::size_t>(i); }
+
 std::string modelPath(const char* file) { return std::string(MRQP_TEST_DATA_DIR) + "/models/" + file; }
 
 double maxAbs(const MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
@@ -90,14 +93,14 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
   REQUIRE(names.size() == M::jointNames().size());
   for (size_t i = 0; i < names.size(); ++i) CHECK(names[i] == M::jointNames()[i]);
   REQUIRE(ref.frameNames().size() == static_cast<size_t>(M::nframes));
-  for (int f = 0; f < M::nframes; ++f) CHECK(ref.frameNames()[f] == M::frameNames()[f]);
+  for (int f = 0; f < M::nframes; ++f) CHECK(ref.frameNames()[ix(f)] == M::frameNames()[ix(f)]);
   for (int i = 0; i < M::nq; ++i) {
-    CHECK(M::qLower()[i] == ref.lowerPositionLimit()(i));
-    CHECK(M::qUpper()[i] == ref.upperPositionLimit()(i));
+    CHECK(M::qLower()[ix(i)] == ref.lowerPositionLimit()(i));
+    CHECK(M::qUpper()[ix(i)] == ref.upperPositionLimit()(i));
   }
   for (int i = 0; i < M::nv; ++i) {
-    CHECK(M::vLimit()[i] == ref.velocityLimit()(i));
-    CHECK(M::effortLimit()[i] == ref.effortLimit()(i));
+    CHECK(M::vLimit()[ix(i)] == ref.velocityLimit()(i));
+    CHECK(M::effortLimit()[ix(i)] == ref.effortLimit()(i));
   }
   CHECK(M::totalMass() == Approx(ref.totalMass()).epsilon(1e-12));
   CHECK(M::frameIndex(M::frameNames()[M::nframes - 1]) == M::nframes - 1);
@@ -181,13 +184,13 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
         qm(k) -= h;
         M::crba(*dm, qp, *Mp);
         M::crba(*dm, qm, *Mn);
-        dM[k] = (*Mp - *Mn) / (2 * h);
+        dM[ix(k)] = (*Mp - *Mn) / (2 * h);
       }
       MatrixXd C = MatrixXd::Zero(M::nv, M::nv), Mdot = MatrixXd::Zero(M::nv, M::nv);
-      for (int k = 0; k < M::nv; ++k) Mdot += dM[k] * v(k);
+      for (int k = 0; k < M::nv; ++k) Mdot += dM[ix(k)] * v(k);
       for (int i = 0; i < M::nv; ++i)
         for (int j = 0; j < M::nv; ++j)
-          for (int k = 0; k < M::nv; ++k) C(i, j) += 0.5 * (dM[k](i, j) + dM[j](i, k) - dM[i](j, k)) * v(k);
+          for (int k = 0; k < M::nv; ++k) C(i, j) += 0.5 * (dM[ix(k)](i, j) + dM[ix(j)](i, k) - dM[ix(i)](j, k)) * v(k);
       typename M::TangentVector zero = M::TangentVector::Zero(), g;
       M::nle(*d, q, zero, g);
       const double cs = std::max(1.0, maxAbs(Mdot));
@@ -200,9 +203,9 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
     // differences of the poses; J̇v equals central differences of J v
     M::fk(*d, q, v);
     for (int f = 0; f < M::nframes; ++f) {
-      INFO("frame " << M::frameNames()[f]);
+      INFO("frame " << M::frameNames()[ix(f)]);
       const auto P = M::framePose(*d, f);
-      const auto Pref = ref.framePose(qx, M::frameNames()[f]);
+      const auto Pref = ref.framePose(qx, M::frameNames()[ix(f)]);
       CHECK(maxAbs(P.R - Pref.R) < 1e-12);
       CHECK(maxAbs(P.p - Pref.p) < 1e-12);
     }
@@ -213,16 +216,16 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
     M::integrate(q, v, -h, qm);
     for (int f = 0; f < M::nframes; f += (M::nframes > 12 ? 5 : 1)) {
       for (bool world : {false, true}) {
-        INFO("frame " << M::frameNames()[f] << (world ? " world-aligned" : " local"));
+        INFO("frame " << M::frameNames()[ix(f)] << (world ? " world-aligned" : " local"));
         M::fk(*d, q, v);
         M::jacobian(*d, f, point, world, *J);
-        const MatrixXd Jref = ref.frameJacobian(qx, M::frameNames()[f], point, world);
+        const MatrixXd Jref = ref.frameJacobian(qx, M::frameNames()[ix(f)], point, world);
         CHECK(maxAbs(*J - Jref) < 1e-10);
         const Eigen::Matrix<double, 6, 1> twist = (*J) * v;
         const auto fd = fdTwist<M>(*dm, f, point, qm, qp, h, world);
         CHECK(maxAbs(twist - fd) < 1e-6 * std::max(1.0, maxAbs(twist)));
         const auto bias = M::bias(*d, f, point, world);
-        const auto biasRef = ref.frameBiasAcceleration(qx, vx, M::frameNames()[f], point, world);
+        const auto biasRef = ref.frameBiasAcceleration(qx, vx, M::frameNames()[ix(f)], point, world);
         CHECK(maxAbs(bias - biasRef) < 1e-9 * std::max(1.0, maxAbs(biasRef)));
         M::fk(*dm, qp);
         M::jacobian(*dm, f, point, world, *J);

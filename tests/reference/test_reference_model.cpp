@@ -536,9 +536,9 @@ TEST_CASE("gravity: potential energy gradient, Jacobian form, base wrench", "[re
       // Base wrench holding the whole robot: force -M g, moment about the root origin, root frame.
       const auto root = m.framePose(q, m.frameNames()[0]);
       const Eigen::Vector3d f = root.R.transpose() * (-m.totalMass() * g);
-      const Eigen::Vector3d c = root.R.transpose() * (m.centerOfMass(q) - root.p);
+      const Eigen::Vector3d com = root.R.transpose() * (m.centerOfMass(q) - root.p);
       CHECK(relErr(N0.segment<3>(3), f) < 1e-13);
-      CHECK(relErr(N0.head<3>(), c.cross(f)) < 1e-13);
+      CHECK(relErr(N0.head<3>(), com.cross(f)) < 1e-13);
     }
   }
 }

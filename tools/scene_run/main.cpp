@@ -115,18 +115,19 @@ int main(int argc, char** argv) {
               dt * 1e3);
   double worst_us = 0.0;
   for (long k = 0; k < cycles; ++k) {
+    const double t = static_cast<double>(k) * dt;
     const auto t0 = std::chrono::steady_clock::now();
     p.update();
     const auto st = p.solve();
     const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     worst_us = std::max(worst_us, us);
     if (st != mrqp::qp::QpStatus::Optimal) {
-      std::fprintf(stderr, "mrqp-scene: t = %.3f s: the QP failed (status %d): stopping\n", k * dt,
+      std::fprintf(stderr, "mrqp-scene: t = %.3f s: the QP failed (status %d): stopping\n", t,
                    static_cast<int>(st));
       return 1;
     }
     if (csv && k % every == 0) {
-      csv << k * dt << "," << static_cast<int>(st) << "," << p.solver().info().iterations << "," << us;
+      csv << t << "," << static_cast<int>(st) << "," << p.solver().info().iterations << "," << us;
       for (const auto& [name, id] : scene.tasks) csv << "," << p.taskError(id).norm();
       for (const auto& [name, id] : scene.contacts) {
         const Eigen::Vector3d f = p.contactForce(id);
@@ -134,7 +135,7 @@ int main(int argc, char** argv) {
       }
       csv << "\n";
     }
-    if (k % 1000 == 0) std::printf("  t = %5.2f s\n", k * dt);
+    if (k % 1000 == 0) std::printf("  t = %5.2f s\n", t);
     p.integrate(dt);
   }
   std::printf("mrqp-scene: done; final task errors:\n");
