@@ -14,21 +14,19 @@ step "dependencies"
 ./tools/hil/setup.sh   # qemu, busybox, the Debian kernel with vcan for the hardware-in-the-loop tests
 
 step "release build"
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release > build-release-configure.log 2>&1 \
+# Configure presets of CMakePresets.json: release (build/release) and asan (build/asan).
+cmake --preset release > build-release-configure.log 2>&1 \
   || { cat build-release-configure.log; exit 1; }
 rm -f build-release-configure.log
-cmake --build build/release -j"$jobs"
+cmake --build --preset release -j"$jobs"
 step "release tests"
-ctest --test-dir build/release -j"$jobs" --output-on-failure
+ctest --preset release -j"$jobs"
 
 step "sanitizer build (ASan + UBSan)"
-cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS=-O1 -DCMAKE_C_FLAGS=-O1 \
-  -DMRQP_SANITIZE=ON -DMRQP_BUILD_TOOLS=OFF > /dev/null
-cmake --build build/asan -j"$jobs"
+cmake --preset asan > /dev/null
+cmake --build --preset asan -j"$jobs"
 step "sanitizer tests (unit)"
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  LSAN_OPTIONS=suppressions="$root/tests/lsan.supp" \
-  ctest --test-dir build/asan -L unit -j"$jobs" --output-on-failure
+ctest --preset asan -j"$jobs"  # label unit, with the ASAN/UBSAN/LSAN options of the preset
 
 step "installed package: find_package(mrqp) from a user project"
 "$root/tests/install/check_install.sh" "$root/build/release"
