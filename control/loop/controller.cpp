@@ -119,6 +119,11 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
     r.miss_rate.assign(n, 0.0);
     robots_.push_back(std::move(r));
   }
+  if (options_.contact_estimation) {
+    std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
+    for (const RobotIo& r : robots_) measured[static_cast<std::size_t>(r.entity)] = true;
+    estimator_ = std::make_unique<ContactEstimator>(problem_, measured);
+  }
 }
 
 bool Controller::addHook(CycleHook& hook) noexcept {
@@ -261,6 +266,7 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       e.v()(j.v_index) += dv;
     }
   }
+  if (estimator_) estimator_->estimate();
 }
 
 void Controller::write(drivers::TimeNs now) noexcept {

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "loop/contact_estimator.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/log_ring.hpp"
 #include "loop/robot_io.hpp"
@@ -57,6 +58,8 @@ struct ControllerOptions {
   /// largest rate accepted (a drive losing more of its feedback frames is a stale sensor).
   double loss_window = 100.0;
   double loss_limit = 0.02;
+  /// Objects, mechanisms and floating bases from contact kinematics (else: the prediction).
+  bool contact_estimation = true;
   /// Driver fault flags that stop the controller (others are logged only).
   std::uint32_t fatal_flags = 0;  ///< 0: the default set (see controller.cpp)
 };
@@ -112,6 +115,8 @@ class Controller {
   /// First time (since the start) each flag was seen, −1 if never.
   drivers::TimeNs flagFirstSeen(int bit) const noexcept { return flag_first_[static_cast<std::size_t>(bit)]; }
   const std::vector<RobotIo>& robots() const noexcept { return robots_; }
+  /// The contact-kinematics estimator (nullptr when switched off).
+  const ContactEstimator* estimator() const noexcept { return estimator_.get(); }
   /// Set-up notices (devices declared but not run by this build).
   const std::vector<std::string>& notices() const noexcept { return notices_; }
   std::size_t busCount() const noexcept { return routers_.size(); }
@@ -136,6 +141,7 @@ class Controller {
   int feedback_missing_cycles_;
   std::vector<std::unique_ptr<drivers::BusRouter>> routers_;
   std::vector<RobotIo> robots_;
+  std::unique_ptr<ContactEstimator> estimator_;
   std::array<CycleHook*, kMaxHooks> hooks_{};
   int hook_count_ = 0;
   std::uint64_t cycle_ = 0;

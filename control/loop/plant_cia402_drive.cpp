@@ -22,7 +22,20 @@ PlantCia402Drive::PlantCia402Drive(drivers::SimNode& node, Plant& plant, const P
   scale_.increments_per_rev = 524288u;
   scale_.rated_torque_mNm = static_cast<std::uint32_t>(std::lround(options.rated_torque * 1000.0));
   node_.set_listener(this);
+  engageBrake();  // power-on: the holding brake is closed until the drive is enabled
   rearm();
+}
+
+void PlantCia402Drive::engageBrake() noexcept {
+  if (braked_) return;
+  braked_ = true;
+  ServoCommand c;
+  c.position = plant_.jointPosition(options_.joint);
+  c.kp = options_.brake_kp;
+  c.kd = options_.brake_kd;
+  c.torque_limit = options_.torque_limit;
+  c.enabled = std::isfinite(c.position);
+  plant_.setServo(options_.joint, c);
 }
 
 void PlantCia402Drive::rearm() noexcept {
@@ -62,6 +75,7 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
   c.torque_limit = options_.torque_limit;
   if (drive.state() == MRQP_FW_CIA402_OPERATION_ENABLED) {
     stopping_ = false;
+    braked_ = false;
     double ff = 0.0;
     (void)mrqp_fw_arm_torque_from_permille(&scale_, drive.target_torque(), &ff);
     if (!options_.torque_mode) {
@@ -86,11 +100,16 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
     }
     c.position = stop_position_;
     c.enabled = true;
+    braked_ = false;
     have_last_target_ = false;
   } else {
     have_last_target_ = false;
   }
-  plant_.setServo(j, c);
+  if (c.enabled) {
+    plant_.setServo(j, c);
+  } else {
+    engageBrake();
+  }
 
   const double q = encoder_broken_ ? std::nan("") : plant_.jointPosition(j);
   const double v = encoder_broken_ ? std::nan("") : plant_.jointVelocity(j);

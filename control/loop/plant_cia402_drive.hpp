@@ -4,7 +4,8 @@
 // plant through Plant::setServo — CSP: a position servo with gains kp, kd and the velocity of its
 // targets (Δtarget / cycle) as feed-forward, the RPDO torque as feed-forward torque; CST: the
 // target torque — and its TPDOs then sample the plant's joint. Quick stop active: the servo holds
-// the position where the quick stop began, with damping. Other states: no torque.
+// the position where the quick stop began, with damping. Other states (and before the drive is
+// started): the holding brake holds the joint where it was when the brake closed.
 //
 // Fault injection (the firmware's own faults, never the controller's): a heartbeat that stops, a
 // fraction of frames not sent (deterministic), corrupt TPDOs, an encoder that reads NaN (the
@@ -28,6 +29,8 @@ struct PlantDriveOptions {
   double kp = 3000.0;             ///< CSP servo, N·m/rad
   double kd = 60.0;               ///< N·m·s/rad
   double torque_limit = 1e9;      ///< N·m
+  double brake_kp = 3000.0;       ///< holding brake (drive not enabled), as a stiff servo
+  double brake_kd = 100.0;
   drivers::TimeNs response_delay = 20000;
 };
 
@@ -57,6 +60,7 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
   void on_nmt_reset(bool application) noexcept override;
   Drive::Feedback on_sync(const Drive& drive, bool new_targets, drivers::TimeNs now) noexcept override;
   void rearm() noexcept;
+  void engageBrake() noexcept;
 
   drivers::SimNode& node_;
   Plant& plant_;
@@ -66,6 +70,7 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
   bool have_last_target_ = false;
   double last_target_ = 0.0;
   bool stopping_ = false;
+  bool braked_ = false;
   double stop_position_ = 0.0;
   unsigned loss_per_mille_ = 0;
   std::uint32_t rng_ = 0x12345678u;

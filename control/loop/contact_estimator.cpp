@@ -1,0 +1,227 @@
+// State from contact kinematics (see contact_estimator.hpp).
+#include "loop/contact_estimator.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mrqp::loop {
+
+namespace {
+
+problem::Pose compose(const problem::Pose& a, const problem::Pose& b) noexcept {
+  problem::Pose c;
+  c.R = a.R * b.R;
+  c.p = a.R * b.p + a.p;
+  return c;
+}
+
+problem::Pose inverse(const problem::Pose& a) noexcept {
+  problem::Pose c;
+  c.R = a.R.transpose();
+  c.p = -(c.R * a.p);
+  return c;
+}
+
+/// Rotation vector of R (world axes).
+Eigen::Vector3d logRotation(const Eigen::Matrix3d& R) noexcept {
+  const Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+}  // namespace
+
+ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured, int iterations)
+    : p_(problem), measured_(measured), iterations_(iterations) {
+  measured_.resize(static_cast<std::size_t>(p_.entityCount()), false);
+  frozen_.resize(static_cast<std::size_t>(p_.contactCapacity()));
+  known_.assign(static_cast<std::size_t>(p_.entityCount()), 0);
+  residual_.assign(static_cast<std::size_t>(p_.entityCount()), -1.0);
+  int max_nv = 0;
+  for (int e = 0; e < p_.entityCount(); ++e) max_nv = std::max(max_nv, p_.entity(e).nv());
+  J_.setZero(6, max_nv);
+  Jo_.setZero(6, max_nv);
+  v_save_.setZero(max_nv);
+  zero_.setZero(max_nv);
+  // Floating bases of measured robots first, then everything without hardware.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int e = 0; e < p_.entityCount(); ++e) {
+      const problem::Entity& en = p_.entity(e);
+      Target t;
+      t.entity = e;
+      if (pass == 0 && measured_[static_cast<std::size_t>(e)] && en.floatingBase()) {
+        t.first = 0;
+        t.count = 6;
+      } else if (pass == 1 && !measured_[static_cast<std::size_t>(e)] && en.nv() > 0) {
+        t.first = 0;
+        t.count = en.nv();
+      } else {
+        continue;
+      }
+      t.A.setZero(6 * kMaxLinks, t.count);
+      t.b.setZero(6 * kMaxLinks);
+      t.N.setZero(t.count, t.count);
+      t.x.setZero(t.count);
+      t.ldlt = Eigen::LDLT<Eigen::MatrixXd>(t.count);
+      targets_.push_back(std::move(t));
+    }
+  }
+}
+
+bool ContactEstimator::estimated(int entity) const noexcept {
+  return residual_[static_cast<std::size_t>(entity)] >= 0.0;
+}
+
+problem::Pose ContactEstimator::targetPose(int c, bool surface_side) const noexcept {
+  // Where the frozen contact puts the frame of one side, from the other side's current pose.
+  const problem::ContactDesc& d = p_.contact(c);
+  const Frozen& f = frozen_[static_cast<std::size_t>(c)];
+  if (d.other_entity < 0) return f.rel;  // surface frame in the world
+  const problem::Pose other = p_.entity(d.other_entity).framePose(d.other_frame);
+  const problem::Pose surface = p_.entity(d.entity).framePose(d.frame);
+  return surface_side ? compose(other, f.rel) : compose(surface, inverse(f.rel));
+}
+
+int ContactEstimator::gather(const Target& t, std::array<int, kMaxLinks>& links,
+                             const std::vector<std::uint8_t>& known) const noexcept {
+  int n = 0;
+  for (int c = 0; c < p_.contactCapacity() && n < kMaxLinks; ++c) {
+    if (!p_.contactActive(c) || !frozen_[static_cast<std::size_t>(c)].recorded) continue;
+    const problem::ContactDesc& d = p_.contact(c);
+    if (d.entity == t.entity) {
+      if (d.other_entity < 0 || known[static_cast<std::size_t>(d.other_entity)]) links[static_cast<std::size_t>(n++)] = c;
+    } else if (d.other_entity == t.entity && known[static_cast<std::size_t>(d.entity)]) {
+      links[static_cast<std::size_t>(n++)] = c;
+    }
+  }
+  return n;
+}
+
+void ContactEstimator::applyIncrement(Target& t) noexcept {
+  // q ← q ⊕ dx on the estimated coordinates (the entity's own integration, v = dx over 1 s).
+  problem::Entity& e = p_.entity(t.entity);
+  const int nv = e.nv();
+  v_save_.head(nv) = e.v();
+  e.v().setZero();
+  e.v().segment(t.first, t.count) = t.x;
+  e.integrate(zero_.head(nv), 1.0);
+  e.v() = v_save_.head(nv);
+}
+
+void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& links, int n) noexcept {
+  problem::Entity& e = p_.entity(t.entity);
+  double worst = 0.0;
+  for (int it = 0; it <= iterations_; ++it) {
+    e.update();
+    worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const int c = links[static_cast<std::size_t>(i)];
+      const problem::ContactDesc& d = p_.contact(c);
+      const bool surface = d.entity == t.entity;
+      const int frame = surface ? d.frame : d.other_frame;
+      const problem::Pose want = targetPose(c, surface);
+      const problem::Pose have = e.framePose(frame);
+      const Eigen::Vector3d dr = logRotation(want.R * have.R.transpose());
+      const Eigen::Vector3d dp = want.p - have.p;
+      worst = std::max({worst, dr.norm(), dp.norm()});
+      t.b.segment<3>(6 * i) = dr;
+      t.b.segment<3>(6 * i + 3) = dp;
+      e.frameJacobian(frame, Eigen::Vector3d::Zero(), J_.leftCols(e.nv()));
+      t.A.middleRows(6 * i, 6) = J_.middleCols(t.first, t.count);
+    }
+    if (it == iterations_ || worst < 1e-10) break;
+    const int rows = 6 * n;
+    t.N.noalias() = t.A.topRows(rows).transpose() * t.A.topRows(rows);
+    t.N.diagonal().array() += 1e-9;
+    t.x.noalias() = t.A.topRows(rows).transpose() * t.b.head(rows);
+    t.ldlt.compute(t.N);
+    t.x = t.ldlt.solve(t.x);
+    if (!t.x.allFinite()) break;
+    applyIncrement(t);
+  }
+  residual_[static_cast<std::size_t>(t.entity)] = worst;
+}
+
+void ContactEstimator::fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int n) noexcept {
+  // Zero relative twist at each contact frame's origin: J_est v_est = twist of the other side
+  // − the contribution of this entity's other (measured) coordinates.
+  problem::Entity& e = p_.entity(t.entity);
+  const int nv = e.nv();
+  for (int i = 0; i < n; ++i) {
+    const int c = links[static_cast<std::size_t>(i)];
+    const problem::ContactDesc& d = p_.contact(c);
+    const bool surface = d.entity == t.entity;
+    const int frame = surface ? d.frame : d.other_frame;
+    const int other_entity = surface ? d.other_entity : d.entity;
+    const int other_frame = surface ? d.other_frame : d.frame;
+    e.frameJacobian(frame, Eigen::Vector3d::Zero(), J_.leftCols(nv));
+    Eigen::Matrix<double, 6, 1> want = Eigen::Matrix<double, 6, 1>::Zero();
+    if (other_entity >= 0) {
+      problem::Entity& o = p_.entity(other_entity);
+      const problem::Pose of = o.framePose(other_frame);
+      const Eigen::Vector3d point = of.R.transpose() * (e.framePose(frame).p - of.p);
+      o.frameJacobian(other_frame, point, Jo_.leftCols(o.nv()));
+      want.noalias() = Jo_.leftCols(o.nv()) * o.v();
+    }
+    t.A.middleRows(6 * i, 6) = J_.middleCols(t.first, t.count);
+    // Subtract what the coordinates that are not estimated contribute.
+    Eigen::Matrix<double, 6, 1> rest = J_.leftCols(nv) * e.v();
+    rest.noalias() -= J_.middleCols(t.first, t.count) * e.v().segment(t.first, t.count);
+    t.b.segment<6>(6 * i) = want - rest;
+  }
+  const int rows = 6 * n;
+  t.N.noalias() = t.A.topRows(rows).transpose() * t.A.topRows(rows);
+  t.N.diagonal().array() += 1e-9;
+  t.x.noalias() = t.A.topRows(rows).transpose() * t.b.head(rows);
+  t.ldlt.compute(t.N);
+  t.x = t.ldlt.solve(t.x);
+  if (t.x.allFinite()) e.v().segment(t.first, t.count) = t.x;
+}
+
+void ContactEstimator::estimate() noexcept {
+  // Contacts that became active freeze their relative pose at the current state.
+  bool any_new = false;
+  for (int c = 0; c < p_.contactCapacity(); ++c) {
+    Frozen& f = frozen_[static_cast<std::size_t>(c)];
+    if (!p_.contactActive(c)) {
+      f.recorded = false;
+    } else if (!f.recorded) {
+      any_new = true;
+    }
+  }
+  if (any_new) {
+    for (int e = 0; e < p_.entityCount(); ++e) p_.entity(e).update();
+    for (int c = 0; c < p_.contactCapacity(); ++c) {
+      Frozen& f = frozen_[static_cast<std::size_t>(c)];
+      if (!p_.contactActive(c) || f.recorded) continue;
+      const problem::ContactDesc& d = p_.contact(c);
+      const problem::Pose surface = p_.entity(d.entity).framePose(d.frame);
+      f.rel = d.other_entity < 0 ? surface : compose(inverse(p_.entity(d.other_entity).framePose(d.other_frame)), surface);
+      f.recorded = true;
+    }
+  }
+  // Measured robots are known (their joints); their bases and everything else follow.
+  for (int e = 0; e < p_.entityCount(); ++e) {
+    known_[static_cast<std::size_t>(e)] = measured_[static_cast<std::size_t>(e)] && !p_.entity(e).floatingBase() ? 1 : 0;
+    residual_[static_cast<std::size_t>(e)] = -1.0;
+  }
+  for (Target& t : targets_) {
+    std::array<int, kMaxLinks> links{};
+    // The other sides' frame poses at their current (measured or estimated) state.
+    for (int e = 0; e < p_.entityCount(); ++e) {
+      if (known_[static_cast<std::size_t>(e)] == 1) {
+        p_.entity(e).update();
+        known_[static_cast<std::size_t>(e)] = 2;  // updated
+      }
+    }
+    const int n = gather(t, links, known_);
+    if (n > 0) {
+      fitPose(t, links, n);
+      fitVelocity(t, links, n);
+    }
+    known_[static_cast<std::size_t>(t.entity)] = n > 0 ? 2 : 1;  // fitted: its frame poses are current
+  }
+}
+
+}  // namespace mrqp::loop

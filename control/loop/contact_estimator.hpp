@@ -1,0 +1,70 @@
+// State of what the controller cannot measure, from the kinematics of the contacts that hold it
+// (docs/loop.md, "The cycle"): a free object or a mechanism from the frames of the robots that
+// hold it, the floating base of a robot from its contacts with the ground. Every established
+// contact freezes the relative pose of its two frames (the world pose of its frame for a ground
+// contact) when it first becomes active; each cycle the estimated coordinates of an entity are the
+// least-squares fit of those poses (a few Gauss–Newton steps from the prediction, over the
+// world-aligned frame Jacobians), and its velocities the least-squares fit of zero relative
+// twist. Entities are estimated in order: floating bases of measured robots first, then the others,
+// each from contacts whose other side is the ground or an entity already measured or estimated.
+// No IMU is fused here. Set-up allocates; estimate() is allocation-free.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "problem/multi_robot_problem.hpp"
+
+namespace mrqp::loop {
+
+class ContactEstimator {
+ public:
+  static constexpr int kMaxLinks = 8;  ///< contacts used per estimated entity
+
+  /// `measured[e]`: entity e's joints come from its drives (a robot with hardware).
+  ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured, int iterations = 2);
+
+  /// Records newly active contacts and estimates every entity that has contacts to fit.
+  void estimate() noexcept;
+
+  /// How entity e's unmeasured coordinates are obtained: "none", "contact kinematics".
+  bool estimated(int entity) const noexcept;
+  /// Largest pose residual (m or rad) of the last estimate of an entity, −1 if not estimated.
+  double residual(int entity) const noexcept { return residual_[static_cast<std::size_t>(entity)]; }
+
+ private:
+  struct Frozen {
+    bool recorded = false;
+    problem::Pose rel;  ///< surface frame in the other frame (the world for the ground)
+  };
+  struct Target {
+    int entity = -1;
+    int first = 0;  ///< first estimated velocity coordinate
+    int count = 0;
+    Eigen::MatrixXd A;      ///< stacked rows (6 kMaxLinks × count)
+    Eigen::VectorXd b;
+    Eigen::MatrixXd N;      ///< AᵀA (count × count)
+    Eigen::VectorXd x;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  };
+
+  problem::Pose targetPose(int contact, bool surface_side) const noexcept;
+  int gather(const Target& t, std::array<int, kMaxLinks>& links, const std::vector<std::uint8_t>& known) const noexcept;
+  void fitPose(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
+  void fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
+  void applyIncrement(Target& t) noexcept;
+
+  problem::MultiRobotProblem& p_;
+  std::vector<bool> measured_;
+  int iterations_;
+  std::vector<Frozen> frozen_;     // per contact slot
+  std::vector<Target> targets_;    // in estimation order
+  std::vector<std::uint8_t> known_;
+  std::vector<double> residual_;
+  Eigen::MatrixXd J_, Jo_;         // 6 × max nv
+  Eigen::VectorXd v_save_, zero_;
+};
+
+}  // namespace mrqp::loop
