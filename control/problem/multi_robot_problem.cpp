@@ -44,7 +44,8 @@ MultiRobotProblem::MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entiti
   const int constraint_slots = settings_.max_constraints >= 0
                                    ? settings_.max_constraints
                                    : settings_.max_com_dampers + settings_.max_joint_inequalities;
-  constraints_.resize(static_cast<std::size_t>(std::max(0, constraint_slots)));
+  // (the slots hold objects built in place, which do not move: constructed, never resized)
+  constraints_ = std::vector<ConstraintSlot>(static_cast<std::size_t>(std::max(0, constraint_slots)));
   max_constraint_rows_ = settings_.max_constraint_rows >= 0
                              ? settings_.max_constraint_rows
                              : 16 * settings_.max_com_dampers + settings_.max_joint_inequalities;
@@ -243,33 +244,48 @@ Vector6d MultiRobotProblem::taskError(int id) const noexcept {
   return taskActive(id) ? task(id).error() : Vector6d::Zero();
 }
 
-int MultiRobotProblem::addConstraint(std::unique_ptr<Constraint> c) noexcept {
-  if (!c) {
-    error_ = "no constraint given";
-    return -1;
-  }
-  if (const char* why = c->check(*this)) {
-    error_ = why;
-    return -1;
-  }
-  int rows = c->inequalityRows(), eqs = c->equalityRows();
+const char* MultiRobotProblem::admit(const Constraint& c) const noexcept {
+  if (const char* why = c.check(*this)) return why;
+  int rows = c.inequalityRows(), eqs = c.equalityRows();
   for (const auto& s : constraints_) {
-    if (s.active) {
+    if (s.active && s.constraint != &c) {
       rows += s.constraint->inequalityRows();
       eqs += s.constraint->equalityRows();
     }
   }
   if (rows > max_constraint_rows_ || eqs > max_constraint_equalities_) {
-    error_ = "the constraints' rows exceed max_constraint_rows or max_constraint_equalities";
-    return -1;
+    return "the constraints' rows exceed max_constraint_rows or max_constraint_equalities";
   }
+  return nullptr;
+}
+
+int MultiRobotProblem::takeConstraintSlot() noexcept {
   const int i = freeSlot(constraints_, [](const ConstraintSlot& s) { return s.constraint != nullptr; });
   if (i < 0) {
     error_ = "no free constraint slot (max_constraints)";
     return -1;
   }
   ConstraintSlot& s = constraints_[static_cast<std::size_t>(i)];
-  s.constraint = std::move(c);
+  s.owned.reset();
+  s.joint_inequality.reset();
+  s.constraint = nullptr;
+  return i;
+}
+
+int MultiRobotProblem::addConstraint(std::unique_ptr<Constraint> c) noexcept {
+  if (!c) {
+    error_ = "no constraint given";
+    return -1;
+  }
+  if (const char* why = admit(*c)) {
+    error_ = why;
+    return -1;
+  }
+  const int i = takeConstraintSlot();
+  if (i < 0) return -1;
+  ConstraintSlot& s = constraints_[static_cast<std::size_t>(i)];
+  s.owned = std::move(c);
+  s.constraint = s.owned.get();
   s.active = true;
   return i;
 }
@@ -285,9 +301,18 @@ int MultiRobotProblem::addJointInequality(const JointInequalityDesc& d) noexcept
     terms[k].joint = d.joint[k];
     terms[k].coeff = d.coeff[k];
   }
-  std::unique_ptr<Constraint> c(new (std::nothrow) JointInequality(terms.data(), d.terms, d.upper, d.interaction,
-                                                                     d.security, d.damping));
-  return addConstraint(std::move(c));
+  const JointInequality candidate(terms.data(), d.terms, d.upper, d.interaction, d.security, d.damping);
+  if (const char* why = admit(candidate)) {
+    error_ = why;
+    return -1;
+  }
+  const int i = takeConstraintSlot();
+  if (i < 0) return -1;
+  ConstraintSlot& s = constraints_[static_cast<std::size_t>(i)];
+  s.joint_inequality.emplace(terms.data(), d.terms, d.upper, d.interaction, d.security, d.damping);
+  s.constraint = &*s.joint_inequality;
+  s.active = true;
+  return i;
 }
 
 int MultiRobotProblem::addComDamper(const ComDamperDesc& d) noexcept {
@@ -305,15 +330,8 @@ bool MultiRobotProblem::restoreConstraint(int id) noexcept {
   if (id < 0 || id >= constraintCapacity() || !constraints_[static_cast<std::size_t>(id)].constraint) return false;
   ConstraintSlot& s = constraints_[static_cast<std::size_t>(id)];
   if (s.active) return true;
-  int rows = s.constraint->inequalityRows(), eqs = s.constraint->equalityRows();
-  for (const auto& o : constraints_) {
-    if (o.active) {
-      rows += o.constraint->inequalityRows();
-      eqs += o.constraint->equalityRows();
-    }
-  }
-  if (rows > max_constraint_rows_ || eqs > max_constraint_equalities_) {
-    error_ = "the constraints' rows exceed max_constraint_rows or max_constraint_equalities";
+  if (const char* why = admit(*s.constraint)) {
+    error_ = why;
     return false;
   }
   s.active = true;
@@ -322,8 +340,11 @@ bool MultiRobotProblem::restoreConstraint(int id) noexcept {
 
 std::unique_ptr<Constraint> MultiRobotProblem::releaseConstraint(int id) noexcept {
   if (id < 0 || id >= constraintCapacity()) return nullptr;
-  constraints_[static_cast<std::size_t>(id)].active = false;
-  return std::move(constraints_[static_cast<std::size_t>(id)].constraint);
+  ConstraintSlot& s = constraints_[static_cast<std::size_t>(id)];
+  s.active = false;
+  s.constraint = nullptr;
+  s.joint_inequality.reset();
+  return std::move(s.owned);
 }
 
 bool MultiRobotProblem::constraintActive(int id) const noexcept {

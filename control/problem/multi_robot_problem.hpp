@@ -21,10 +21,12 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "problem/constraint.hpp"
+#include "problem/constraints/joint_inequality.hpp"
 #include "problem/contact.hpp"
 #include "problem/entity.hpp"
 #include "problem/problem_settings.hpp"
@@ -133,9 +135,11 @@ class MultiRobotProblem {
   Constraint& constraint(int id) noexcept { return *constraints_[static_cast<std::size_t>(id)].constraint; }
   int constraintCapacity() const noexcept { return static_cast<int>(constraints_.size()); }
 
-  /// Builds a JointInequality / ComDamper and adds it (addConstraint). Set-up only: these allocate
-  /// the object (on the cycle, add an object built beforehand). Return the constraint id or −1.
+  /// Builds a JointInequality in a free slot's own storage and adds it: allocation-free, may be
+  /// called between cycles. Returns the constraint id or −1. (releaseConstraint of it returns
+  /// nullptr: the object lives in the slot.)
   int addJointInequality(const JointInequalityDesc& d) noexcept;
+  /// Builds a ComDamper and adds it. Set-up only: allocates the object.
   int addComDamper(const ComDamperDesc& d) noexcept;
   bool removeJointInequality(int id) noexcept { return removeConstraint(id); }
 
@@ -202,10 +206,16 @@ class MultiRobotProblem {
     bool active = false;
   };
   struct ConstraintSlot {
-    std::unique_ptr<Constraint> constraint;
+    std::unique_ptr<Constraint> owned;                 // an object handed to addConstraint
+    std::optional<JointInequality> joint_inequality;   // built in place by addJointInequality
+    Constraint* constraint = nullptr;                  // the one of the two in use, or nullptr
     bool active = false;
     int ineq_row = 0, eq_row = 0;  // first rows in C and A, after layout()
   };
+  // Why `c` cannot join the active constraints (check(), rows over capacity), or nullptr.
+  const char* admit(const Constraint& c) const noexcept;
+  // A slot holding no object, else one holding a removed object (cleared), else −1.
+  int takeConstraintSlot() noexcept;
 
   void establish(ContactSlot& c) noexcept;
   void layout() noexcept;

@@ -79,3 +79,34 @@ TEST_CASE("10,000 cycles of the Panda door scene allocate nothing", "[scene][rea
   CHECK(n == 0);
   CHECK(failures == 0);
 }
+
+TEST_CASE("Constraints are removed, restored, released and added in place without allocating",
+          "[scene][realtime]") {
+  auto scene = load("panda_door.yaml");
+  auto& p = *scene.problem;
+  const int latch = scene.joint_inequalities.at("latch");
+  const auto& door = p.entity(p.entityIndex("door"));
+  mrqp::problem::JointInequalityDesc d;  // the latch again: −q_door + q_handle ≤ 0.01
+  d.terms = 2;
+  d.entity = {{p.entityIndex("door"), p.entityIndex("door")}};
+  d.joint = {{door.jointIndex("door"), door.jointIndex("handle")}};
+  d.coeff = {{-1.0, 1.0}};
+  d.upper = 0.01;
+  run(scene, 10, "door_angle", "grip_top");
+  int id = -1, failures = 0;
+  bool restored = false, released_in_place = false;
+  const long n = allocationsIn([&] {
+    p.removeConstraint(latch);
+    restored = p.restoreConstraint(latch) && p.constraintActive(latch);
+    p.removeConstraint(latch);
+    id = p.addJointInequality(d);  // the rows of the removed latch are free again
+    failures = run(scene, 500, "door_angle", "grip_top");
+    released_in_place = p.releaseConstraint(id) == nullptr && !p.constraintActive(id);
+  });
+  CHECK(n == 0);
+  CHECK(restored);
+  CHECK(id >= 0);
+  CHECK(id != latch);
+  CHECK(released_in_place);
+  CHECK(failures == 0);
+}
