@@ -161,6 +161,7 @@ struct Writer {
   std::map<std::string, std::vector<std::string>> bodies_of_entity;  // prefixed body names
   std::vector<MjcfEntity> entities;
   std::vector<GeomSpec> visuals;  // of the robot being written
+  std::vector<bool> geom_used = std::vector<bool>(plant.geoms.size(), false);
 
   std::string geomClass(std::size_t entity_index) const {
     const unsigned bit = 1u << entity_index;
@@ -197,9 +198,11 @@ struct Writer {
   /// The plant section's primitives for this link.
   void addPlantGeoms(std::ostream& out, std::size_t entity_index, const std::string& entity,
                      const std::string& link, const std::string& body, bool is_root) {
-    for (const GeomSpec& g : plant.geoms) {
+    for (std::size_t i = 0; i < plant.geoms.size(); ++i) {
+      const GeomSpec& g = plant.geoms[i];
       if (g.entity == entity && (g.link == link || (g.link.empty() && is_root))) {
         addGeom(out, entity_index, entity, body, primitive(g));
+        geom_used[i] = true;
       }
     }
   }
@@ -453,6 +456,15 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     }
   }
 
+  for (std::size_t i = 0; i < plant.geoms.size(); ++i) {
+    if (!w.geom_used[i]) {
+      const GeomSpec& g = plant.geoms[i];
+      throw std::runtime_error(g.source.file + ":" + std::to_string(g.source.line) + ": plant.geoms[" +
+                               std::to_string(i) + "].link: entity '" + g.entity + "' has no link '" +
+                               g.link + "'");
+    }
+  }
+
   MjcfModel out;
   std::ostringstream x;
   const scene::SettingsSpec& st = scene.settings;
@@ -460,7 +472,8 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     << "<compiler angle=\"radian\" inertiafromgeom=\"false\" boundmass=\"0\" boundinertia=\"0\"/>\n"
     << "<size njmax=\"4000\" nconmax=\"800\"/>\n"
     << "<option timestep=\"" << num(plant.timestep) << "\" gravity=\"" << vec(st.gravity)
-    << "\" jacobian=\"dense\" cone=\"pyramidal\" integrator=\"implicit\"/>\n"
+    << "\" cone=\"pyramidal\" integrator=\"" << (plant.integrator == "implicit" ? "implicit" : "Euler")
+    << "\"/>\n"
     << "<visual><global offwidth=\"1920\" offheight=\"1080\"/><quality shadowsize=\"2048\"/></visual>\n"
     << "<default><geom friction=\"" << num(plant.contact.friction) << " 0.005 0.0001\" solref=\""
     << num(plant.contact.timeconst) << " " << num(plant.contact.dampratio) << "\"/></default>\n"
@@ -564,7 +577,8 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
   }
   // Every joint but the mimic ones has its drive: force = b0 + b1·q + b2·q̇, clamped, with the
   // numbers written by the plant from its servo command (b0 = τ_ff + kp q_ref + kd v_ref,
-  // b1 = −kp, b2 = −kd); the implicit integrator takes the −kd in velocity implicitly.
+  // b1 = −kp, b2 = −kd, or with the Euler integrator b2 = 0 and kd as the joint's damping, which
+  // that integrator takes implicitly).
   std::ostringstream act;
   for (const MjcfEntity& e : w.entities) {
     for (const std::string& j : e.joints) {

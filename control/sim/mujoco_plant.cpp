@@ -287,7 +287,9 @@ double MujocoPlant::jointVelocity(int joint) const noexcept {
 
 double MujocoPlant::jointTorque(int joint) const noexcept {
   const Joint& j = joints_[static_cast<std::size_t>(joint)];
-  return j.actuator >= 0 ? data_->actuator_force[j.actuator] : 0.0;
+  // With Euler, the drive's −kd q̇ is the joint's damping (qfrc_passive): added back here.
+  return (j.actuator >= 0 ? data_->actuator_force[j.actuator] : 0.0) -
+         model_->dof_damping[j.dof] * data_->qvel[j.dof];
 }
 
 void MujocoPlant::setServo(int joint, const loop::ServoCommand& command) noexcept {
@@ -309,7 +311,14 @@ void MujocoPlant::applyServos() noexcept {
                       std::isfinite(c.torque_limit);
       bias[0] = ok ? b0 : 0.0;
       bias[1] = ok ? -c.kp : 0.0;
-      bias[2] = ok ? -c.kd : 0.0;
+      // The velocity gain where the integrator takes it implicitly: the implicit integrator
+      // differentiates the actuator, semi-implicit Euler only the joint damping.
+      if (model_->opt.integrator == mjINT_IMPLICIT) {
+        bias[2] = ok ? -c.kd : 0.0;
+      } else {
+        bias[2] = 0.0;
+        model_->dof_damping[j.dof] = ok ? c.kd : 0.0;
+      }
       const double limit = ok ? std::abs(c.torque_limit) : 0.0;
       range[0] = -limit;
       range[1] = limit;

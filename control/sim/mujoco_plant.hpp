@@ -3,8 +3,10 @@
 // from the scene (mjcf_writer.hpp); contacts and friction are MuJoCo's. Each joint's actuator is the
 // drive's current loop, applied at every MuJoCo step:
 //   τ = clamp(τ_ff + kp (q_ref − q) + kd (v_ref − v), ±torque_limit),
-// as a MuJoCo actuator with an affine bias, so that MuJoCo's implicit integrator takes the drive's
-// damping implicitly (stiff drives stay stable at the plant's step). The scene's joint springs
+// as a MuJoCo actuator with an affine bias; the drive's damping is taken implicitly by the
+// integrator (as joint damping with semi-implicit Euler, in the actuator with MuJoCo's implicit
+// integrator), so stiff drives stay stable at the plant's step. With Euler the −kd q̇ part is
+// outside the clamp. The scene's joint springs
 // −(K q + C q̇ + O) act on their joints; grasps of the plant section are welds; URDF mimic joints
 // follow their master through joint equalities.
 //

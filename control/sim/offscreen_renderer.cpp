@@ -109,7 +109,7 @@ mjvCamera OffscreenRenderer::sceneCamera(const mjData* data) const {
       extent = std::max(extent, hi[i] - lo[i]);
     }
   }
-  cam.distance = 1.6 * extent + 1.0;
+  cam.distance = 1.2 * extent + 0.6;
   cam.azimuth = 150.0;
   cam.elevation = -20.0;
   return cam;

@@ -61,6 +61,10 @@ struct PlantSpec {
   bool present = false;               ///< the scene has a plant section
   std::string simulator = "ideal";    ///< "ideal" or "mujoco" (default "mujoco" in a section)
   double timestep = 0.0005;           ///< MuJoCo's step, s
+  /// "euler": MuJoCo's semi-implicit Euler, the drives' kd taken implicitly as joint damping
+  /// (fast); "implicit": MuJoCo's implicit integrator (every velocity derivative, about three
+  /// times slower on a humanoid).
+  std::string integrator = "euler";
   ContactParams contact;              ///< every pair without its own entry
   std::vector<PairSpec> pairs;
   std::vector<GeomSpec> geoms;

@@ -92,7 +92,7 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
   }
   const std::string path = "plant";
   const Map m(r, *node, path,
-              {"simulator", "timestep", "seed", "contact", "pairs", "geoms", "grasps", "noise",
+              {"simulator", "timestep", "integrator", "seed", "contact", "pairs", "geoms", "grasps", "noise",
                "package_path"});
   s.present = true;
   s.source = m.source();
@@ -108,6 +108,13 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
   if (s.timestep > 0.01) {
     r.fail(m.require("timestep"), m.at("timestep"),
            "expected at most 0.01 s, got " + scene::formatNumber(s.timestep));
+  }
+  if (m.has("integrator")) {
+    s.integrator = m.name("integrator");
+    if (s.integrator != "euler" && s.integrator != "implicit") {
+      r.fail(m.require("integrator"), m.at("integrator"),
+             "expected euler or implicit, got \"" + s.integrator + "\"");
+    }
   }
   s.seed = static_cast<std::uint64_t>(m.integer("seed", 0, INT_MAX, 1));
   const ContactParams defaults;

@@ -171,14 +171,15 @@ TEST_CASE("MuJoCo plant: a servo's step response is the second-order closed form
   // The Panda's first joint turns about the vertical: gravity does no work on it. The other
   // joints are held by stiff servos; the first one's inertia about its axis comes from the
   // generated model's mass matrix at that configuration.
-  const char* yaml = R"(
+  const std::string integrator = GENERATE(as<std::string>{}, "euler", "implicit");
+  const std::string yaml = R"(
 entities:
   - name: panda
     model: panda
     pose: {xyz: [0, 0, 0]}
     q: {panda_joint2: -0.3, panda_joint4: -2.2, panda_joint6: 2.0, panda_joint7: 0.785}
-plant: {timestep: 0.0002}
-)";
+plant: {timestep: 0.0002, integrator: )" + integrator + "}\n";
+  INFO("integrator " << integrator);
   auto plant = makePlant(yaml);
   const int e = plant->entityHandle("panda");
   std::unique_ptr<mrqp::problem::Entity> model = registry().make("panda", "panda");

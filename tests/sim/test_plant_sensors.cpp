@@ -215,3 +215,22 @@ TEST_CASE("Sensor noise: bias and the spread of the noise", "[sim]") {
   CHECK(sd == Approx(0.5).epsilon(0.03));
   CHECK(noise.jointPosition(1.25) == 1.25);  // no noise configured
 }
+
+TEST_CASE("Plant section: names are checked against the scene", "[sim]") {
+  const std::string head =
+      "entities:\n  - {name: box, model: rigid_object, mass: 1.0, inertia: [0.01, 0.01, 0.01]}\n";
+  const auto error = [&](const std::string& plant) {
+    try {
+      makePlant(head + plant);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(error("plant:\n  pairs: [{between: [box, boxx]}]\n") ==
+        "test.yaml:4: plant.pairs[0].between: unknown entity 'boxx'");
+  CHECK(error("plant:\n  geoms:\n    - {entity: box, link: lid, type: sphere, size: [0.1]}\n") ==
+        "test.yaml:5: plant.geoms[0].link: entity 'box' has no link 'lid'");
+  CHECK(error("plant:\n  grasps: [nothing]\n") ==
+        "test.yaml:4: plant.grasps[0]: 'nothing' is not a contact between two entities of the scene");
+}
