@@ -19,7 +19,7 @@ namespace mrqp::sim {
 
 namespace {
 
-constexpr int kMaxEntities = 30;      // one contype bit each; bit 30 is the ground
+constexpr int kMaxEntities = 30;  // one contype bit each; bit 30 is the ground
 constexpr unsigned kGroundBit = 1u << 30;
 constexpr unsigned kAllEntityBits = (1u << 30) - 1u;
 
@@ -52,9 +52,7 @@ std::string poseAttrs(const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
   return " pos=\"" + vec(p) + "\" quat=\"" + quat(q) + "\"";
 }
 
-std::string poseAttrs(const urdf::Pose& p) {
-  return poseAttrs(toEigen(p.position), toEigen(p.rotation));
-}
+std::string poseAttrs(const urdf::Pose& p) { return poseAttrs(toEigen(p.position), toEigen(p.rotation)); }
 
 bool fileExists(const std::string& path) {
   std::ifstream f(path);
@@ -90,8 +88,7 @@ ResolvedMesh resolveMesh(const std::string& uri, const std::string& urdf_dir,
       }
     }
     for (const std::string& dir : package_path) {  // the package without the file (COLLADA)
-      if (fileExists(dir + "/" + package + "/package.xml") ||
-          fileExists(dir + "/" + package + "/convex")) {
+      if (fileExists(dir + "/" + package + "/package.xml") || fileExists(dir + "/" + package + "/convex")) {
         out.package_root = dir + "/" + package;
       }
     }
@@ -136,8 +133,8 @@ std::vector<Eigen::Vector3d> readHullPoints(const std::string& path) {
   for (long i = 0; i < count; ++i) {
     Eigen::Vector3d p;
     if (!(f >> p.x() >> p.y() >> p.z())) {
-      throw std::runtime_error(path + ": point " + std::to_string(i + 1) + " of " +
-                               std::to_string(count) + " cannot be read");
+      throw std::runtime_error(path + ": point " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                               " cannot be read");
     }
     pts.push_back(p);
   }
@@ -145,9 +142,8 @@ std::vector<Eigen::Vector3d> readHullPoints(const std::string& path) {
 }
 
 std::string rgbaOf(std::size_t entity) {
-  static const std::array<const char*, 6> palette = {"0.85 0.85 0.88 1", "0.95 0.55 0.2 1",
-                                                     "0.3 0.55 0.9 1",   "0.4 0.75 0.4 1",
-                                                     "0.8 0.35 0.35 1",  "0.7 0.6 0.85 1"};
+  static const std::array<const char*, 6> palette = {"0.85 0.85 0.88 1", "0.95 0.55 0.2 1", "0.3 0.55 0.9 1",
+                                                     "0.4 0.75 0.4 1",   "0.8 0.35 0.35 1", "0.7 0.6 0.85 1"};
   return palette[entity % palette.size()];
 }
 
@@ -165,8 +161,8 @@ struct Writer {
 
   std::string geomClass(std::size_t entity_index) const {
     const unsigned bit = 1u << entity_index;
-    return " contype=\"" + std::to_string(bit) + "\" conaffinity=\"" +
-           std::to_string(kAllEntityBits & ~bit) + "\"";
+    return " contype=\"" + std::to_string(bit) + "\" conaffinity=\"" + std::to_string(kAllEntityBits & ~bit) +
+           "\"";
   }
 
   std::string primitive(const GeomSpec& g) const {
@@ -208,8 +204,8 @@ struct Writer {
   }
 
   void linkGeoms(std::ostream& out, std::size_t entity_index, const std::string& entity,
-                 const urdf::ModelInterface& robot, const urdf::Link& link,
-                 const std::string& urdf_dir, const std::string& body) {
+                 const urdf::ModelInterface& robot, const urdf::Link& link, const std::string& urdf_dir,
+                 const std::string& body) {
     bool hull_done = false;
     for (const urdf::CollisionSharedPtr& c : link.collision_array) {
       if (!c || !c->geometry) {
@@ -245,8 +241,8 @@ struct Writer {
             addGeom(out, entity_index, entity, body, "type=\"mesh\" mesh=\"" + mesh_name + "\"" + at);
           } else if (!hull_done && !r.package_root.empty()) {
             // MuJoCo 2.2 reads no COLLADA: the package's reference convex hull of the link.
-            const std::string hull = r.package_root + "/convex/" + robot.getName() + "/" +
-                                     link.name + "-ch.txt";
+            const std::string hull =
+                r.package_root + "/convex/" + robot.getName() + "/" + link.name + "-ch.txt";
             if (fileExists(hull)) {
               std::ostringstream v;
               for (const Eigen::Vector3d& p : readHullPoints(hull)) {
@@ -264,8 +260,8 @@ struct Writer {
   }
 
   void linkBody(std::ostream& out, std::size_t entity_index, const std::string& entity,
-                const urdf::ModelInterface& robot, const urdf::Link& link,
-                const std::string& urdf_dir, MjcfEntity& info, bool is_root) {
+                const urdf::ModelInterface& robot, const urdf::Link& link, const std::string& urdf_dir,
+                MjcfEntity& info, bool is_root) {
     const std::string body = entity + "/" + link.name;
     bodies_of_entity[entity].push_back(body);
     info.links.push_back(link.name);
@@ -301,19 +297,19 @@ struct Writer {
         case urdf::Joint::CONTINUOUS:
         case urdf::Joint::PRISMATIC: {
           const bool hinge = j->type != urdf::Joint::PRISMATIC;
-          out << "<joint name=\"" << entity << "/" << j->name << "\" type=\""
-              << (hinge ? "hinge" : "slide") << "\" axis=\"" << vec(axis) << "\"";
+          out << "<joint name=\"" << entity << "/" << j->name << "\" type=\"" << (hinge ? "hinge" : "slide")
+              << "\" axis=\"" << vec(axis) << "\"";
           if (j->type != urdf::Joint::CONTINUOUS && j->limits && j->limits->upper > j->limits->lower) {
-            out << " limited=\"true\" range=\"" << num(j->limits->lower) << " "
-                << num(j->limits->upper) << "\"";
+            out << " limited=\"true\" range=\"" << num(j->limits->lower) << " " << num(j->limits->upper)
+                << "\"";
           } else {
             out << " limited=\"false\"";
           }
           out << "/>\n";
           info.joints.push_back(j->name);
           if (j->mimic) {
-            info.mimics.push_back(MjcfMimic{j->name, j->mimic->joint_name, j->mimic->multiplier,
-                                            j->mimic->offset});
+            info.mimics.push_back(
+                MjcfMimic{j->name, j->mimic->joint_name, j->mimic->multiplier, j->mimic->offset});
           }
           break;
         }
@@ -331,8 +327,8 @@ struct Writer {
   void robot(std::size_t index, const scene::EntitySpec& e) {
     const std::string urdf_path = builtinModelUrdf(e.model);
     if (urdf_path.empty()) {
-      throw std::runtime_error(e.source.file + ":" + std::to_string(e.source.line) + ": entities." +
-                               e.name + ".model: no URDF known for model '" + e.model +
+      throw std::runtime_error(e.source.file + ":" + std::to_string(e.source.line) + ": entities." + e.name +
+                               ".model: no URDF known for model '" + e.model +
                                "' (the MuJoCo plant knows panda, jvrc1, door and rigid_object)");
     }
     const urdf::ModelInterfaceSharedPtr robot = urdf::parseURDFFile(urdf_path);
@@ -345,8 +341,7 @@ struct Writer {
     info.floating = builtinModelFloating(e.model);
     visuals = builtinModelVisuals(e.model);
     info.root_body = e.name + "/" + robot->getRoot()->name;
-    world << "<body name=\"" << info.root_body << "\""
-          << poseAttrs(e.pose.xyz, fromRpy(e.pose.rpy)) << ">\n";
+    world << "<body name=\"" << info.root_body << "\"" << poseAttrs(e.pose.xyz, fromRpy(e.pose.rpy)) << ">\n";
     if (info.floating) {
       world << "<freejoint name=\"" << e.name << "/root\"/>\n";
     }
@@ -367,10 +362,9 @@ struct Writer {
     const scene::RigidObjectSpec& o = e.object;
     const Eigen::Matrix3d& I = o.inertia;
     world << "<body name=\"" << info.root_body << "\"" << poseAttrs(e.pose.xyz, fromRpy(e.pose.rpy))
-          << ">\n<freejoint name=\"" << e.name << "/root\"/>\n<inertial pos=\"" << vec(o.com)
-          << "\" mass=\"" << num(o.mass) << "\" fullinertia=\"" << num(I(0, 0)) << " " << num(I(1, 1))
-          << " " << num(I(2, 2)) << " " << num(I(0, 1)) << " " << num(I(0, 2)) << " " << num(I(1, 2))
-          << "\"/>\n";
+          << ">\n<freejoint name=\"" << e.name << "/root\"/>\n<inertial pos=\"" << vec(o.com) << "\" mass=\""
+          << num(o.mass) << "\" fullinertia=\"" << num(I(0, 0)) << " " << num(I(1, 1)) << " " << num(I(2, 2))
+          << " " << num(I(0, 1)) << " " << num(I(0, 2)) << " " << num(I(1, 2)) << "\"/>\n";
     bool has_geom = false;
     for (const GeomSpec& g : plant.geoms) {
       has_geom = has_geom || g.entity == e.name;
@@ -429,9 +423,8 @@ void checkPlantNames(const scene::SceneSpec& scene, const PlantSpec& plant) {
       found = found || (c.name == plant.grasps[i] && !c.other_entity.empty());
     }
     if (!found) {
-      throw std::runtime_error(where(plant.source) + "plant.grasps[" + std::to_string(i) +
-                               "]: '" + plant.grasps[i] +
-                               "' is not a contact between two entities of the scene");
+      throw std::runtime_error(where(plant.source) + "plant.grasps[" + std::to_string(i) + "]: '" +
+                               plant.grasps[i] + "' is not a contact between two entities of the scene");
     }
   }
 }
@@ -441,12 +434,13 @@ void checkPlantNames(const scene::SceneSpec& scene, const PlantSpec& plant) {
 MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
                     const std::vector<MjcfWeld>& welds_in) {
   if (scene.entities.size() > static_cast<std::size_t>(kMaxEntities)) {
-    throw std::runtime_error(scene.file + ": the MuJoCo plant takes at most " +
-                             std::to_string(kMaxEntities) + " entities");
+    throw std::runtime_error(scene.file + ": the MuJoCo plant takes at most " + std::to_string(kMaxEntities) +
+                             " entities");
   }
   checkPlantNames(scene, plant);
   Writer w{scene, plant, plant.package_path.empty() ? defaultPackagePath() : plant.package_path,
-           {}, {}, {}, {}, {}, {}};
+           {},    {},    {},
+           {},    {},    {}};
   for (std::size_t i = 0; i < scene.entities.size(); ++i) {
     const scene::EntitySpec& e = scene.entities[i];
     if (e.model == "rigid_object") {
@@ -484,9 +478,10 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     << w.assets.str() << "</asset>\n"
     << "<worldbody>\n"
     << "<light pos=\"0 0 5\" dir=\"0 0 -1\" directional=\"true\" diffuse=\"0.7 0.7 0.7\"/>\n"
-    << "<light pos=\"3 -3 4\" dir=\"-0.5 0.5 -0.7\" directional=\"true\" diffuse=\"0.3 0.3 0.3\" castshadow=\"false\"/>\n"
-    << "<geom name=\"ground\" type=\"plane\" size=\"10 10 0.1\" material=\"grid\" contype=\""
-    << kGroundBit << "\" conaffinity=\"" << kAllEntityBits << "\"/>\n"
+    << "<light pos=\"3 -3 4\" dir=\"-0.5 0.5 -0.7\" directional=\"true\" diffuse=\"0.3 0.3 0.3\" "
+       "castshadow=\"false\"/>\n"
+    << "<geom name=\"ground\" type=\"plane\" size=\"10 10 0.1\" material=\"grid\" contype=\"" << kGroundBit
+    << "\" conaffinity=\"" << kAllEntityBits << "\"/>\n"
     << w.world.str() << "</worldbody>\n";
 
   // Contact parameters per pair: explicit pairs, and the same bodies excluded from MuJoCo's
@@ -502,8 +497,9 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     for (const std::string& g1 : geoms(p.a)) {
       for (const std::string& g2 : geoms(p.b)) {
         contact << "<pair geom1=\"" << g1 << "\" geom2=\"" << g2 << "\" condim=\"3\" friction=\""
-                << num(p.params.friction) << " " << num(p.params.friction) << " 0.005 0.0001 0.0001\" solref=\""
-                << num(p.params.timeconst) << " " << num(p.params.dampratio) << "\"/>\n";
+                << num(p.params.friction) << " " << num(p.params.friction)
+                << " 0.005 0.0001 0.0001\" solref=\"" << num(p.params.timeconst) << " "
+                << num(p.params.dampratio) << "\"/>\n";
       }
     }
     for (const std::string& b1 : bodies(p.a)) {
@@ -538,9 +534,9 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
   std::ostringstream eq;
   for (const MjcfEntity& e : w.entities) {
     for (const MjcfMimic& m : e.mimics) {
-      eq << "<joint name=\"mimic/" << e.name << "/" << m.joint << "\" joint1=\"" << e.name << "/"
-         << m.joint << "\" joint2=\"" << e.name << "/" << m.master << "\" polycoef=\"" << num(m.offset)
-         << " " << num(m.multiplier) << " 0 0 0\"/>\n";
+      eq << "<joint name=\"mimic/" << e.name << "/" << m.joint << "\" joint1=\"" << e.name << "/" << m.joint
+         << "\" joint2=\"" << e.name << "/" << m.master << "\" polycoef=\"" << num(m.offset) << " "
+         << num(m.multiplier) << " 0 0 0\"/>\n";
     }
   }
   for (const std::string& g : plant.grasps) {
@@ -562,8 +558,7 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
           weld = known;
         }
       }
-      eq << "<weld name=\"grasp/" << g << "\" body1=\"" << weld.body1 << "\" body2=\"" << weld.body2
-         << "\"";
+      eq << "<weld name=\"grasp/" << g << "\" body1=\"" << weld.body1 << "\" body2=\"" << weld.body2 << "\"";
       if (weld.relative_known) {
         const Eigen::Quaterniond q(weld.relative.rotation());
         eq << " relpose=\"" << vec(weld.relative.translation()) << " " << quat(q) << "\"";
@@ -582,8 +577,8 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
   std::ostringstream act;
   for (const MjcfEntity& e : w.entities) {
     for (const std::string& j : e.joints) {
-      const bool mimic = std::any_of(e.mimics.begin(), e.mimics.end(),
-                                     [&](const MjcfMimic& m) { return m.joint == j; });
+      const bool mimic =
+          std::any_of(e.mimics.begin(), e.mimics.end(), [&](const MjcfMimic& m) { return m.joint == j; });
       if (!mimic) {
         act << "<general name=\"" << e.name << "/" << j << "\" joint=\"" << e.name << "/" << j
             << "\" gaintype=\"fixed\" gainprm=\"0\" biastype=\"affine\" biasprm=\"0 0 0\" "

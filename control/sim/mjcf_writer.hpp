@@ -30,10 +30,10 @@ struct MjcfMimic {
 /// What the writer put into the model for one entity.
 struct MjcfEntity {
   std::string name;
-  std::string model;         ///< the scene's model name
-  bool floating = false;     ///< on a free joint "ENTITY/root"
+  std::string model;      ///< the scene's model name
+  bool floating = false;  ///< on a free joint "ENTITY/root"
   bool rigid_object = false;
-  std::string root_body;     ///< "ENTITY/LINK" of the root link
+  std::string root_body;            ///< "ENTITY/LINK" of the root link
   std::vector<std::string> links;   ///< link names (without prefix), bodies of the model
   std::vector<std::string> joints;  ///< moving joint names (without prefix), in model order
   std::vector<MjcfMimic> mimics;    ///< those of `joints` that follow another one
@@ -42,7 +42,7 @@ struct MjcfEntity {
 /// A grasp: the relative pose of body2 in body1 that a weld holds.
 struct MjcfWeld {
   std::string contact;
-  std::string body1, body2;  ///< prefixed body names
+  std::string body1, body2;                                    ///< prefixed body names
   Eigen::Isometry3d relative = Eigen::Isometry3d::Identity();  ///< pose of body2 in body1
   bool relative_known = false;  ///< false: MuJoCo takes it from the reference configuration
 };

@@ -36,9 +36,7 @@ Eigen::Matrix3d bodyRotation(const mjData* d, int body) {
 
 Eigen::Vector3d vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
-std::string where(const scene::Source& s) {
-  return s.file + ":" + std::to_string(s.line) + ": ";
-}
+std::string where(const scene::Source& s) { return s.file + ":" + std::to_string(s.line) + ": "; }
 
 }  // namespace
 
@@ -100,8 +98,7 @@ void MujocoPlant::load(const std::string& xml) {
   model_ = mj_loadXML(path, nullptr, error.data(), static_cast<int>(error.size()));
   std::remove(path);
   if (model_ == nullptr) {
-    throw std::runtime_error(std::string("MuJoCo plant: the model of the scene is refused: ") +
-                             error.data());
+    throw std::runtime_error(std::string("MuJoCo plant: the model of the scene is refused: ") + error.data());
   }
   data_ = mj_makeData(model_);
   if (data_ == nullptr) {
@@ -109,8 +106,7 @@ void MujocoPlant::load(const std::string& xml) {
   }
 }
 
-void MujocoPlant::placeInitialState(const scene::SceneSpec& scene,
-                                    const scene::ModelRegistry* registry) {
+void MujocoPlant::placeInitialState(const scene::SceneSpec& scene, const scene::ModelRegistry* registry) {
   joints_.clear();
   mimics_.clear();
   entities_.clear();
@@ -171,8 +167,8 @@ void MujocoPlant::placeInitialState(const scene::SceneSpec& scene,
       // Without the generated model: every joint but the mimic ones, in MuJoCo's order.
       order.clear();
       for (const std::string& j : me.joints) {
-        const bool mimic = std::any_of(me.mimics.begin(), me.mimics.end(),
-                                       [&](const MjcfMimic& m) { return m.joint == j; });
+        const bool mimic =
+            std::any_of(me.mimics.begin(), me.mimics.end(), [&](const MjcfMimic& m) { return m.joint == j; });
         if (!mimic) {
           order.push_back(j);
         }
@@ -386,8 +382,7 @@ void MujocoPlant::entityState(int entity, Eigen::Ref<Eigen::VectorXd> q,
     for (int i = 0; i < 7; ++i) {
       q(i) = qp[i];
     }
-    const Eigen::Matrix3d R =
-        Eigen::Quaterniond(qp[3], qp[4], qp[5], qp[6]).normalized().toRotationMatrix();
+    const Eigen::Matrix3d R = Eigen::Quaterniond(qp[3], qp[4], qp[5], qp[6]).normalized().toRotationMatrix();
     // MuJoCo's free joint: linear velocity of the body origin in the world frame, then the
     // angular velocity in the body frame.
     v.segment<3>(0) = vec3(qv + 3);

@@ -98,7 +98,7 @@ class MujocoPlant final : public loop::Plant {
     std::string name;
     bool floating = false;
     int free_qpos = -1, free_dof = -1, root_body = -1;
-    std::vector<int> joints;  // handles, in the entity's order
+    std::vector<int> joints;                          // handles, in the entity's order
     std::vector<std::pair<std::string, int>> frames;  // frame name → body
   };
   struct Mimic {  // a URDF mimic joint, held to its master by a joint equality

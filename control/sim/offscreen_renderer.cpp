@@ -24,9 +24,8 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* model, int width, int height
     : model_(model), width_(width), height_(height) {
   if (width <= 0 || height <= 0 || width > model->vis.global.offwidth ||
       height > model->vis.global.offheight) {
-    throw std::runtime_error("renderer: image size " + std::to_string(width) + "x" +
-                             std::to_string(height) + " outside 1.." +
-                             std::to_string(model->vis.global.offwidth) + "x" +
+    throw std::runtime_error("renderer: image size " + std::to_string(width) + "x" + std::to_string(height) +
+                             " outside 1.." + std::to_string(model->vis.global.offwidth) + "x" +
                              std::to_string(model->vis.global.offheight));
   }
   // Mesa's surfaceless platform: no X, no GPU device needed (llvmpipe).
@@ -37,13 +36,11 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* model, int width, int height
                              "; packages libegl1 libegl-mesa0)");
   }
   display_ = display;
-  const EGLint config_attributes[] = {EGL_RED_SIZE,   8,  EGL_GREEN_SIZE,      8,
-                                      EGL_BLUE_SIZE,  8,  EGL_ALPHA_SIZE,      8,
-                                      EGL_DEPTH_SIZE, 24, EGL_STENCIL_SIZE,    8,
-                                      EGL_COLOR_BUFFER_TYPE, EGL_RGB_BUFFER,
-                                      // the default (a window) does not exist without a display
-                                      EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                      EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  const EGLint config_attributes[] = {
+      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8, EGL_DEPTH_SIZE, 24,
+      EGL_STENCIL_SIZE, 8, EGL_COLOR_BUFFER_TYPE, EGL_RGB_BUFFER,
+      // the default (a window) does not exist without a display
+      EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (eglChooseConfig(display, config_attributes, &config, 1, &count) != EGL_TRUE || count < 1) {
@@ -58,8 +55,10 @@ OffscreenRenderer::OffscreenRenderer(const mjModel* model, int width, int height
   if (context == EGL_NO_CONTEXT ||
       eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
     eglTerminate(display);
-    throw std::runtime_error("renderer: cannot make an OpenGL context current without a surface "
-                             "(error " + eglErrorText() + ")");
+    throw std::runtime_error(
+        "renderer: cannot make an OpenGL context current without a surface "
+        "(error " +
+        eglErrorText() + ")");
   }
   context_ = context;
   mjv_defaultOption(&option_);

@@ -58,17 +58,17 @@ struct SensorNoiseSpec {
 };
 
 struct PlantSpec {
-  bool present = false;               ///< the scene has a plant section
-  std::string simulator = "ideal";    ///< "ideal" or "mujoco" (default "mujoco" in a section)
-  double timestep = 0.0005;           ///< MuJoCo's step, s
+  bool present = false;             ///< the scene has a plant section
+  std::string simulator = "ideal";  ///< "ideal" or "mujoco" (default "mujoco" in a section)
+  double timestep = 0.0005;         ///< MuJoCo's step, s
   /// "euler": MuJoCo's semi-implicit Euler, the drives' kd taken implicitly as joint damping
   /// (fast); "implicit": MuJoCo's implicit integrator (every velocity derivative, about three
   /// times slower on a humanoid).
   std::string integrator = "euler";
-  ContactParams contact;              ///< every pair without its own entry
+  ContactParams contact;  ///< every pair without its own entry
   std::vector<PairSpec> pairs;
   std::vector<GeomSpec> geoms;
-  std::vector<std::string> grasps;    ///< scene contacts held as rigid welds
+  std::vector<std::string> grasps;  ///< scene contacts held as rigid welds
   SensorNoiseSpec noise;
   std::uint64_t seed = 1;
   std::vector<std::string> package_path;  ///< where package:// meshes are looked up

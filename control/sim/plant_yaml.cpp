@@ -121,8 +121,7 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
   if (const YAML::Node* c = m.find("contact")) {
     s.contact = readContact(r, *c, m.at("contact"), defaults, s.timestep);
   } else {
-    s.contact = readContact(r, YAML::Node(YAML::NodeType::Map), m.at("contact"), defaults,
-                            s.timestep);
+    s.contact = readContact(r, YAML::Node(YAML::NodeType::Map), m.at("contact"), defaults, s.timestep);
   }
   if (const YAML::Node* p = m.find("pairs")) {
     const std::vector<YAML::Node> items = r.list(*p, m.at("pairs"));
@@ -134,8 +133,7 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
       const std::vector<std::string> between = r.names(pm.require("between"), pm.at("between"));
       if (between.size() != 2) {
         r.fail(pm.require("between"), pm.at("between"),
-               "expected two entity names (or ground), got a list of " +
-                   std::to_string(between.size()));
+               "expected two entity names (or ground), got a list of " + std::to_string(between.size()));
       }
       pair.a = between[0];
       pair.b = between[1];
@@ -147,12 +145,13 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
           rest[e.key] = e.value;
         }
       }
-      pair.params = readContact(r, rest.size() > 0 ? rest : YAML::Node(YAML::NodeType::Map), ip,
-                                s.contact, s.timestep);
+      pair.params =
+          readContact(r, rest.size() > 0 ? rest : YAML::Node(YAML::NodeType::Map), ip, s.contact, s.timestep);
       for (const PairSpec& other : s.pairs) {
         if ((other.a == pair.a && other.b == pair.b) || (other.a == pair.b && other.b == pair.a)) {
-          r.fail(items[i], ip, "pair " + pair.a + " / " + pair.b + " is listed twice (first at line " +
-                                   std::to_string(other.source.line) + ")");
+          r.fail(items[i], ip,
+                 "pair " + pair.a + " / " + pair.b + " is listed twice (first at line " +
+                     std::to_string(other.source.line) + ")");
         }
       }
       s.pairs.push_back(pair);
@@ -168,9 +167,9 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
     s.grasps = r.names(*g, m.at("grasps"));
   }
   if (const YAML::Node* n = m.find("noise")) {
-    const Map nm(r, *n, m.at("noise"),
-                 {"joint_position", "joint_velocity", "joint_torque", "force", "torque", "gyro",
-                  "accelerometer"});
+    const Map nm(
+        r, *n, m.at("noise"),
+        {"joint_position", "joint_velocity", "joint_torque", "force", "torque", "gyro", "accelerometer"});
     const auto read = [&](const char* key, NoiseSpec& out) {
       if (const YAML::Node* v = nm.find(key)) {
         out = readNoise(r, *v, nm.at(key));

@@ -35,8 +35,7 @@ std::string findProgram(const std::string& program) {
 
 Recorder::Recorder(const MujocoPlant& plant, RecorderOptions options)
     : plant_(plant), options_(std::move(options)) {
-  if (options_.width <= 0 || options_.height <= 0 || options_.width % 2 != 0 ||
-      options_.height % 2 != 0) {
+  if (options_.width <= 0 || options_.height <= 0 || options_.width % 2 != 0 || options_.height % 2 != 0) {
     throw std::runtime_error("recorder: frame size must be positive even numbers");
   }
   if (options_.key_frames < 1 || !(options_.fps > 0.0)) {

@@ -72,10 +72,10 @@ plant: {timestep: 0.001}
   const int e = plant->entityHandle("panda");
   std::unique_ptr<mrqp::problem::Entity> model = registry().make("panda", "panda");
   mrqp::problem::Pose base;
-  base.R = (Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
-            Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()) *
-            Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
-               .toRotationMatrix();
+  base.R =
+      (Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   base.p = Eigen::Vector3d(0.1, -0.2, 0.6274);
   model->setBasePose(base);
   const int nv = model->nv();
@@ -178,7 +178,8 @@ entities:
     model: panda
     pose: {xyz: [0, 0, 0]}
     q: {panda_joint2: -0.3, panda_joint4: -2.2, panda_joint6: 2.0, panda_joint7: 0.785}
-plant: {timestep: 0.0002, integrator: )" + integrator + "}\n";
+plant: {timestep: 0.0002, integrator: )" +
+                           integrator + "}\n";
   INFO("integrator " << integrator);
   auto plant = makePlant(yaml);
   const int e = plant->entityHandle("panda");

@@ -15,8 +15,9 @@ using mrqp::sim::testing::makePlant;
 using mrqp::sim::testing::registry;
 
 TEST_CASE("MuJoCo plant: JVRC-1's M and bias equal the generated floating-base model's", "[sim]") {
-  auto plant = makePlant("entities: [{name: jvrc, model: jvrc1, pose: {xyz: [0, 0, 1]}}]\n"
-                         "plant: {timestep: 0.001}\n");
+  auto plant = makePlant(
+      "entities: [{name: jvrc, model: jvrc1, pose: {xyz: [0, 0, 1]}}]\n"
+      "plant: {timestep: 0.001}\n");
   const int e = plant->entityHandle("jvrc");
   std::unique_ptr<mrqp::problem::Entity> model = registry().make("jvrc1", "jvrc");
   const int nv = model->nv(), nq = model->nq();

@@ -18,8 +18,7 @@ void holdAll(mrqp::sim::MujocoPlant& plant, const std::string& entity) {
   const int e = plant.entityHandle(entity);
   Eigen::VectorXd q(plant.entityNq(e)), v(plant.entityNv(e));
   plant.entityState(e, q, v);
-  const std::unique_ptr<mrqp::problem::Entity> model =
-      mrqp::sim::testing::registry().make("panda", entity);
+  const std::unique_ptr<mrqp::problem::Entity> model = mrqp::sim::testing::registry().make("panda", entity);
   for (int k = 0; k < model->nv(); ++k) {
     mrqp::loop::ServoCommand c;
     c.enabled = true;
@@ -41,7 +40,8 @@ mrqp::loop::Vector6d distalWeight(const mjModel* m, const mjData* d, int body, d
     while (a > 0 && a != body) a = m->body_parentid[a];
     if (a != body) continue;
     mass += m->body_mass[b];
-    moment_sum += m->body_mass[b] * Eigen::Vector3d(d->xipos[3 * b], d->xipos[3 * b + 1], d->xipos[3 * b + 2]);
+    moment_sum +=
+        m->body_mass[b] * Eigen::Vector3d(d->xipos[3 * b], d->xipos[3 * b + 1], d->xipos[3 * b + 2]);
   }
   const Eigen::Vector3d com = moment_sum / mass;
   const Eigen::Vector3d f(0, 0, -9.81 * mass);
@@ -73,7 +73,8 @@ TEST_CASE("MuJoCo plant: a wrist sensor of a held arm reads the weight of the ha
   const int frame = plant->frameHandle("panda", "panda_hand");
   REQUIRE(frame >= 0);
   const mrqp::loop::Vector6d w = plant->sensorWrench(frame);
-  const mrqp::loop::Vector6d expected = distalWeight(plant->model(), plant->data(), frame, 0.0, Eigen::Vector3d::Zero());
+  const mrqp::loop::Vector6d expected =
+      distalWeight(plant->model(), plant->data(), frame, 0.0, Eigen::Vector3d::Zero());
   INFO("measured " << w.transpose() << "\nexpected " << expected.transpose());
   CHECK((w.head<3>() - expected.head<3>()).norm() < 1e-3 * expected.head<3>().norm() + 1e-6);
   CHECK((w.tail<3>() - expected.tail<3>()).norm() < 1e-4);
@@ -143,10 +144,10 @@ plant: {timestep: 0.001}
   REQUIRE(base >= 0);
   plant->step(0.001);
   const mrqp::loop::ImuSample s = plant->imu(base);
-  const Eigen::Matrix3d R = (Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()) *
-                             Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitY()) *
-                             Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
-                                .toRotationMatrix();
+  const Eigen::Matrix3d R =
+      (Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.5, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   CHECK((s.specific_force - R.transpose() * Eigen::Vector3d(0, 0, 9.81)).norm() < 1e-9);
   CHECK(s.angular_velocity.norm() < 1e-12);
   CHECK(s.orientation.angularDistance(Eigen::Quaterniond(R)) < 1e-9);
@@ -167,7 +168,8 @@ plant:
   contact: {friction: 0.6, timeconst: 0.01}
   pairs: [{between: [box, ground], friction: 1.2}]
   noise: {force: {stddev: 0.5, bias: 0.1}, gyro: {stddev: 0.001}}
-)", "a.yaml");
+)",
+                                                                  "a.yaml");
     CHECK(p.simulator == "mujoco");
     CHECK(p.timestep == 0.001);
     CHECK(p.seed == 42);
@@ -189,7 +191,8 @@ plant:
     return std::string("no error");
   };
   CHECK(error("plant: {timestep: -1}\n") == "a.yaml:2: plant.timestep: expected a number > 0, got -1");
-  CHECK(error("plant:\n  contact: {friction: 0.5, stiff: 3}\n") == "a.yaml:3: plant.contact.stiff: unknown key");
+  CHECK(error("plant:\n  contact: {friction: 0.5, stiff: 3}\n") ==
+        "a.yaml:3: plant.contact.stiff: unknown key");
   CHECK(error("plant: {simulator: bullet}\n") ==
         "a.yaml:2: plant.simulator: expected mujoco or ideal, got \"bullet\"");
   CHECK(error("plant:\n  geoms:\n    - {entity: box, type: cone, size: [1]}\n") ==

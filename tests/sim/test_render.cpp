@@ -59,7 +59,8 @@ TEST_CASE("Rendering: a scene renders headless to a non-blank image", "[sim][ren
   int distinct_rows = 0;
   const std::size_t n = image.pixels.size() / 3;
   for (std::size_t i = 0; i < n; ++i) {
-    const double y = 0.299 * image.pixels[3 * i] + 0.587 * image.pixels[3 * i + 1] + 0.114 * image.pixels[3 * i + 2];
+    const double y =
+        0.299 * image.pixels[3 * i] + 0.587 * image.pixels[3 * i + 1] + 0.114 * image.pixels[3 * i + 2];
     sum += y;
     sq += y * y;
   }
