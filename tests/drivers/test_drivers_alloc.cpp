@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fake_cia402_drive.hpp"
+#include "emulated_node.hpp"
 #include "fake_devices.hpp"
 
 extern "C" void* __libc_malloc(std::size_t);
@@ -304,4 +305,151 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   CHECK(cycles_with_faults == 10u);
   CHECK(std::isfinite(sink));
   CHECK(drives[3]->position() != 0);
+}
+
+TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in the cycle", "[drivers][realtime]")
+{
+  using mrqp::emulation::EmulatedFtSensor;
+  using mrqp::emulation::EmulatedHandBoard;
+  using mrqp::emulation::EmulatedImu;
+  using mrqp::emulation::EmulatedMitMotor;
+  const TimeNs period = milliseconds(1);
+  SimNodeConfig mc;
+  mc.rx_queue = 1024;
+  mc.echo_own = true;
+
+  // MIT bus: 3 motors on one node; classic bus: an F/T sensor; FD bus: a hand board and an IMU.
+  SimBus mit_bus;
+  SimNode* mit_master = mit_bus.add_node(mc);
+  SimNode& mit_node = *mit_bus.add_node(SimNodeConfig{});
+  drvtest::IdealJointHost mit_host(mit_node, false);
+  drvtest::EmulatedNode<EmulatedMitMotor> mit_emu(mit_node);
+  std::vector<std::unique_ptr<EmulatedMitMotor>> motors;
+  MitHandConfig hc;
+  for (std::uint8_t id = 1; id <= 3; ++id) {
+    EmulatedMitMotor::Options o;
+    o.motor_id = id;
+    o.joint = id;
+    motors.push_back(std::make_unique<EmulatedMitMotor>(mit_host, o));
+    mit_emu.add(*motors.back());
+    MitMotorConfig m;
+    m.motor_id = id;
+    hc.motors.push_back(m);
+  }
+  BusRouter mit_router(*mit_master);
+
+  SimBus ft_bus;
+  SimNode* ft_master = ft_bus.add_node(mc);
+  SimNode& ft_node = *ft_bus.add_node(SimNodeConfig{});
+  drvtest::ConstantFtHost ft_host(ft_node);
+  ft_host.value = {{1.0, 2.0, 3.0, 0.1, 0.2, 0.3}};
+  drvtest::EmulatedNode<EmulatedFtSensor> ft_emu(ft_node);
+  EmulatedFtSensor::Options fo;
+  fo.node = 0x30;
+  EmulatedFtSensor ft_dev(ft_host, fo);
+  ft_emu.add(ft_dev);
+  BusRouter ft_router(*ft_master);
+
+  SimBusConfig fdc;
+  fdc.data_bps = 5000000;
+  SimBus fd_bus(fdc);
+  SimNodeConfig fdm = mc;
+  fdm.fd = true;
+  SimNode* fd_master = fd_bus.add_node(fdm);
+  SimNodeConfig fdn;
+  fdn.fd = true;
+  SimNode& board_node = *fd_bus.add_node(fdn);
+  drvtest::IdealJointHost board_host(board_node, true);
+  drvtest::EmulatedNode<EmulatedHandBoard> board_emu(board_node);
+  EmulatedHandBoard::Options bo;
+  bo.joints = 20;
+  bo.command_timeout = milliseconds(20);
+  EmulatedHandBoard board(board_host, bo);
+  board_emu.add(board);
+  SimNode& imu_node = *fd_bus.add_node(fdn);
+  drvtest::ConstantImuHost imu_host(imu_node);
+  drvtest::EmulatedNode<EmulatedImu> imu_emu(imu_node);
+  EmulatedImu::Options io;
+  io.node = 0x40;
+  EmulatedImu imu_dev(imu_host, io);
+  imu_emu.add(imu_dev);
+  BusRouter fd_router(*fd_master);
+
+  std::string err;
+  auto mit = MitHandDriver::create({&mit_router}, hc, &err);
+  REQUIRE(mit != nullptr);
+  FtConfig fc;
+  fc.produce_sync = true;
+  FtSensorConfig fs;
+  fs.node = 0x30;
+  fc.sensors.push_back(fs);
+  auto ft = FtSensorDriver::create({&ft_router}, fc, &err);
+  REQUIRE(ft != nullptr);
+  FdHandConfig bc;
+  HandBoardConfig hb;
+  hb.joints = 20;
+  bc.boards.push_back(hb);
+  auto hand = FdHandDriver::create({&fd_router}, bc, &err);
+  REQUIRE(hand != nullptr);
+  ImuConfig ic;
+  ic.produce_sync = true;
+  ImuSensorConfig is;
+  is.node = 0x40;
+  ic.imus.push_back(is);
+  auto imu = ImuDriver::create({&fd_router}, ic, &err);
+  REQUIRE(imu != nullptr);
+  std::vector<Device*> devices{mit.get(), ft.get(), hand.get(), imu.get()};
+
+  long allocations = 0;
+  std::uint32_t all_flags = 0;
+  TimeNs t = 0;
+  for (Device* d : devices) {
+    d->start(t);
+  }
+  for (int k = 0; k < 3000; ++k, t += period) {
+    const long before = g_count.load(std::memory_order_relaxed);
+    mit_bus.advance_to(t);
+    ft_bus.advance_to(t);
+    fd_bus.advance_to(t);
+    mit_router.poll(t);
+    ft_router.poll(t);
+    fd_router.poll(t);
+    for (Device* d : devices) {
+      all_flags |= d->update(t).flags;
+    }
+    if (k == 10) {
+      for (Device* d : devices) {
+        d->request_enable(t);
+      }
+    }
+    const double phase = 2.0 * M_PI * static_cast<double>(k) / 500.0;
+    for (JointDevice* j : {static_cast<JointDevice*>(mit.get()), static_cast<JointDevice*>(hand.get())}) {
+      for (std::size_t i = 0; i < j->joint_count(); ++i) {
+        JointCommand c;
+        c.position = 0.3 * std::sin(phase + static_cast<double>(i));
+        c.stiffness = 20.0;
+        c.damping = 0.5;
+        (void)j->set_joint(i, c);
+      }
+    }
+    if (k == 1500) {
+      motors[1]->corrupt_replies(1);
+      imu_dev.corrupt_samples(1);
+    }
+    for (Device* d : devices) {
+      d->transmit(t);
+    }
+    allocations += g_count.load(std::memory_order_relaxed) - before;
+  }
+  CHECK(allocations == 0);
+  for (Device* d : devices) {
+    CHECK(d->ready());
+  }
+  // Only the injected corruption: one MIT reply and one IMU sample dropped (a gap in its sequence).
+  CHECK((all_flags & ~(fault::kCorruptFrame | fault::kSampleLost)) == 0u);
+  CHECK(mit->faults().devices[1].corrupt_frames == 1u);
+  CHECK(imu->faults().devices[0].corrupt_frames == 1u);
+  CHECK(imu->faults().devices[0].lost_samples == 1u);
+  CHECK(board_host.servo[7].enabled);
+  CHECK(mit_host.servo[2].kp == Approx(20.0).margin(0.2));
 }

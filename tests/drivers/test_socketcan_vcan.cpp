@@ -207,3 +207,33 @@ struct SkipWithoutVcan {
 const SkipWithoutVcan skip_without_vcan;
 
 }  // namespace
+
+TEST_CASE("drivers: vcan: TX echo with receive_own, in wire order, marked own", "[drivers][socketcan][vcan]")
+{
+  SocketCanBus a;
+  SocketCanBus b;
+  SocketCanConfig ca;
+  ca.interface = kInterface;
+  ca.receive_own = true;
+  SocketCanConfig cb;
+  cb.interface = kInterface;
+  std::string err;
+  REQUIRE(a.open(ca, &err));
+  REQUIRE(b.open(cb, &err));
+  CHECK(a.echoes_own());
+  CHECK_FALSE(b.echoes_own());
+  REQUIRE(a.send(classic(0x000, 2)) == SendResult::Ok);  // a's frame first...
+  RxFrame rx;
+  REQUIRE(receive_one(b, rx));
+  CHECK_FALSE(rx.own);
+  REQUIRE(b.send(classic(0x701, 1)) == SendResult::Ok);  // ... then b's
+  REQUIRE(receive_one(a, rx));
+  CHECK(rx.own);  // a's own frame, returned (MSG_CONFIRM), before b's
+  CHECK(rx.frame.id == 0x000u);
+  REQUIRE(receive_one(a, rx));
+  CHECK_FALSE(rx.own);
+  CHECK(rx.frame.id == 0x701u);
+  // b does not receive its own frame.
+  RxFrame none;
+  CHECK(b.receive(none) == ReceiveResult::Empty);
+}
