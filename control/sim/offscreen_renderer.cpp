@@ -90,7 +90,7 @@ OffscreenRenderer::~OffscreenRenderer() {
   }
 }
 
-mjvCamera OffscreenRenderer::sceneCamera(const mjData* data) const {
+mjvCamera OffscreenRenderer::sceneCamera(const mjData* data, double azimuth, double elevation) const {
   mjvCamera cam;
   mjv_defaultFreeCamera(model_, &cam);
   // Look at the bounding box of the bodies (the ground excluded).
@@ -109,8 +109,8 @@ mjvCamera OffscreenRenderer::sceneCamera(const mjData* data) const {
     }
   }
   cam.distance = 1.2 * extent + 0.6;
-  cam.azimuth = 150.0;
-  cam.elevation = -20.0;
+  cam.azimuth = azimuth;
+  cam.elevation = elevation;
   return cam;
 }
 

@@ -19,8 +19,9 @@ class OffscreenRenderer {
   OffscreenRenderer(const OffscreenRenderer&) = delete;
   OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
 
-  /// A free camera that sees the whole scene at `data`'s state, from the front-left, above.
-  mjvCamera sceneCamera(const mjData* data) const;
+  /// A free camera that sees the whole scene at `data`'s state, from `azimuth` and `elevation`
+  /// (degrees, MuJoCo's: azimuth 0 looks along +x, elevation < 0 from above).
+  mjvCamera sceneCamera(const mjData* data, double azimuth = 150.0, double elevation = -20.0) const;
   /// The image of `data` (its kinematics computed, e.g. by mj_forward) seen by `camera`.
   RgbImage render(mjData* data, const mjvCamera& camera);
 

@@ -68,7 +68,7 @@ RecorderOutput Recorder::finish() {
   };
   // One camera for the whole run: framed on the first state.
   place(0);
-  const mjvCamera camera = renderer.sceneCamera(d.get());
+  const mjvCamera camera = renderer.sceneCamera(d.get(), options_.azimuth, options_.elevation);
 
   RecorderOutput out;
   out.frames = static_cast<int>(states_.size());

@@ -18,6 +18,8 @@ struct RecorderOptions {
   int key_frames = 6;             ///< frames of the PNG strip
   double fps = 30.0;              ///< of the video, and of capturing through due()
   bool video = true;              ///< write motion.mp4 when ffmpeg is found
+  double azimuth = 150.0;         ///< camera, degrees (OffscreenRenderer::sceneCamera)
+  double elevation = -20.0;
 };
 
 /// What finish() wrote.

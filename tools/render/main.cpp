@@ -24,7 +24,8 @@ int usage(const char* msg) {
   if (msg != nullptr) std::fprintf(stderr, "mrqp-render: %s\n", msg);
   std::fprintf(stderr,
                "usage: mrqp-render SCENE.yaml --out DIR [--width W] [--height H] [--duration S]\n"
-               "                   [--fps F] [--kp KP] [--kd KD] [--mjcf FILE.xml]\n"
+               "                   [--fps F] [--kp KP] [--kd KD] [--azimuth DEG] [--elevation DEG]\n"
+               "                   [--mjcf FILE.xml]\n"
                "  Renders the scene's MuJoCo model at its initial state to DIR/scene.png. With\n"
                "  --duration, simulates S seconds with every joint held at its initial position\n"
                "  (drive gains KP, KD; default 2000, 100) and writes DIR/motion.png and, with ffmpeg,\n"
@@ -45,6 +46,7 @@ bool parseNumber(const char* text, double& out) {
 int main(int argc, char** argv) {
   std::string scene_file, out_dir, mjcf_file;
   double width = 640, height = 480, duration = 0.0, fps = 30.0, kp = 2000.0, kd = 100.0;
+  double azimuth = 150.0, elevation = -20.0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -74,6 +76,10 @@ int main(int argc, char** argv) {
       number(kp);
     } else if (a == "--kd") {
       number(kd);
+    } else if (a == "--azimuth") {
+      number(azimuth);
+    } else if (a == "--elevation") {
+      number(elevation);
     } else if (a == "-h" || a == "--help") {
       usage(nullptr);
       return 0;
@@ -111,7 +117,8 @@ int main(int argc, char** argv) {
       std::unique_ptr<mjData, void (*)(mjData*)> d(mj_makeData(plant.model()), mj_deleteData);
       std::copy(plant.data()->qpos, plant.data()->qpos + plant.model()->nq, d->qpos);
       mj_forward(plant.model(), d.get());
-      mrqp::sim::writePng(out_dir + "/scene.png", renderer.render(d.get(), renderer.sceneCamera(d.get())));
+      mrqp::sim::writePng(out_dir + "/scene.png",
+                          renderer.render(d.get(), renderer.sceneCamera(d.get(), azimuth, elevation)));
       std::printf("%s/scene.png\n", out_dir.c_str());
     }
     if (duration > 0.0) {
@@ -135,6 +142,8 @@ int main(int argc, char** argv) {
       o.width = w;
       o.height = h;
       o.fps = fps;
+      o.azimuth = azimuth;
+      o.elevation = elevation;
       mrqp::sim::Recorder recorder(plant, o);
       const double dt = scene.settings.dt;
       while (plant.time() < duration - 1e-9) {
