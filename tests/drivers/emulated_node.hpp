@@ -5,61 +5,16 @@
 
 #include <mrqp/drivers/sim_bus.hpp>
 #include <mrqp/emulation/emulation.hpp>
+#include <mrqp/emulation/sim_device_node.hpp>
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
-#include <vector>
 
 namespace drvtest {
 
 /// Frames reaching the node go to every device; the node's timer runs their advance().
 template <class Device>
-class EmulatedNode final : public mrqp::drivers::SimListener {
- public:
-  explicit EmulatedNode(mrqp::drivers::SimNode& node) : node_(node) { node_.set_listener(this); }
-  void add(Device& d)
-  {
-    devices_.push_back(&d);
-    rearm();
-  }
-  mrqp::drivers::SimNode& node() noexcept { return node_; }
-
-  void on_receive(mrqp::drivers::SimNode&, mrqp::drivers::ReceiveResult kind,
-                  const mrqp::drivers::RxFrame& rx) noexcept override
-  {
-    if (kind != mrqp::drivers::ReceiveResult::Frame) {
-      return;
-    }
-    for (Device* d : devices_) {
-      (void)d->on_frame(rx.frame, rx.timestamp);
-    }
-    rearm();
-  }
-  void on_timer(mrqp::drivers::SimNode&, mrqp::drivers::TimeNs now) noexcept override
-  {
-    for (Device* d : devices_) {
-      d->advance(now);
-    }
-    rearm();
-  }
-
- private:
-  void rearm() noexcept
-  {
-    mrqp::drivers::TimeNs t = INT64_MAX;
-    for (Device* d : devices_) {
-      t = std::min(t, d->next_event());
-    }
-    if (t == INT64_MAX) {
-      node_.cancel_timer();
-    } else {
-      node_.set_timer(t);
-    }
-  }
-  mrqp::drivers::SimNode& node_;
-  std::vector<Device*> devices_;
-};
+using EmulatedNode = mrqp::emulation::SimDeviceNode<Device>;
 
 /// Joints as FakeMitMotors moves them: torque = kp (p_cmd - p) + t_ff, then p = p_cmd when
 /// kp > 0, v = v_cmd (float arithmetic, as the fake). `hand` = true: as FakeHandBoard (position

@@ -8,3 +8,4 @@
 #include "mrqp/emulation/emulated_imu.hpp"
 #include "mrqp/emulation/emulated_mit_motor.hpp"
 #include "mrqp/emulation/joint_host.hpp"
+#include "mrqp/emulation/sim_device_node.hpp"
