@@ -1,3 +1,5 @@
+// The multi-robot QP (eq. 25): slots, layout of x and of the rows, assembly of the core rows
+// (EoM, contacts, torque limits, bounds), of the constraint objects and of the task objects.
 #include "problem/multi_robot_problem.hpp"
 
 #include "problem/constraints/com_damper.hpp"

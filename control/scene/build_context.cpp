@@ -1,3 +1,4 @@
+// Name resolution and errors while a scene is built; see build_context.hpp.
 #include "scene/build_context.hpp"
 
 #include <sstream>

@@ -1,3 +1,4 @@
+// CoM support-region damper (paper 2, eq. 7): support polygon and rows; see com_damper.hpp.
 #include "problem/constraints/com_damper.hpp"
 
 #include <algorithm>

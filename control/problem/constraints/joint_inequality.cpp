@@ -1,3 +1,4 @@
+// Joint inequality kept by a velocity damper (eq. 21, 24); see joint_inequality.hpp.
 #include "problem/constraints/joint_inequality.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// CoM task (one entity or a group), eq. 25–26: rows and error; see com_task.hpp.
 #include "problem/tasks/com_task.hpp"
 
 #include <algorithm>

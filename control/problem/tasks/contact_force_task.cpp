@@ -1,3 +1,4 @@
+// Contact force task (Sec. III): W_f λ = fʳᵉᶠ over one contact's λ; see contact_force_task.hpp.
 #include "problem/tasks/contact_force_task.hpp"
 
 #include "problem/multi_robot_problem.hpp"

@@ -1,3 +1,4 @@
+// Force minimisation task: identity rows over the λ of one or every contact; see force_min_task.hpp.
 #include "problem/tasks/force_min_task.hpp"
 
 #include "problem/multi_robot_problem.hpp"

@@ -1,3 +1,4 @@
+// Frame position / orientation / pose tasks, eq. 25–26: rows and error; see frame_task.hpp.
 #include "problem/tasks/frame_task.hpp"
 
 #include <Eigen/Geometry>

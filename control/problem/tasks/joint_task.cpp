@@ -1,3 +1,4 @@
+// Joint task, eq. 26: one identity row on one joint; see joint_task.hpp.
 #include "problem/tasks/joint_task.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// Posture task, eq. 26: identity rows over one entity's joints; see posture_task.hpp.
 #include "problem/tasks/posture_task.hpp"
 
 #include "problem/multi_robot_problem.hpp"
