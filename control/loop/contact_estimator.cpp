@@ -32,9 +32,13 @@ Eigen::Vector3d logRotation(const Eigen::Matrix3d& R) noexcept {
 
 }  // namespace
 
-ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured, int iterations)
-    : p_(problem), measured_(measured), iterations_(iterations) {
+ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured,
+                                   const std::vector<int>& imu_frame, int iterations)
+    : p_(problem), measured_(measured), imu_frame_(imu_frame), iterations_(iterations) {
   measured_.resize(static_cast<std::size_t>(p_.entityCount()), false);
+  imu_frame_.resize(static_cast<std::size_t>(p_.entityCount()), -1);
+  imu_.assign(static_cast<std::size_t>(p_.entityCount()), drivers::ImuFeedback{});
+  imu_fresh_.assign(static_cast<std::size_t>(p_.entityCount()), 0);
   frozen_.resize(static_cast<std::size_t>(p_.contactCapacity()));
   known_.assign(static_cast<std::size_t>(p_.entityCount()), 0);
   residual_.assign(static_cast<std::size_t>(p_.entityCount()), -1.0);
@@ -51,8 +55,9 @@ ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const st
       Target t;
       t.entity = e;
       if (pass == 0 && measured_[static_cast<std::size_t>(e)] && en.floatingBase()) {
-        t.first = 0;
-        t.count = 6;
+        const bool imu = imu_frame_[static_cast<std::size_t>(e)] >= 0;
+        t.first = imu ? 3 : 0;  // with an IMU: the position only (v = (ω; v) body)
+        t.count = imu ? 3 : 6;
       } else if (pass == 1 && !measured_[static_cast<std::size_t>(e)] && en.nv() > 0) {
         t.first = 0;
         t.count = en.nv();
@@ -179,6 +184,31 @@ void ContactEstimator::fitVelocity(Target& t, const std::array<int, kMaxLinks>& 
   if (t.x.allFinite()) e.v().segment(t.first, t.count) = t.x;
 }
 
+void ContactEstimator::setImu(int entity, const drivers::ImuFeedback& sample) noexcept {
+  imu_[static_cast<std::size_t>(entity)] = sample;
+  imu_fresh_[static_cast<std::size_t>(entity)] = 1;
+}
+
+void ContactEstimator::applyImu(int entity) noexcept {
+  // R_world_base = R_world_imu · (R_base_imu)ᵀ with R_base_imu from the current joints.
+  problem::Entity& e = p_.entity(entity);
+  const drivers::ImuFeedback& m = imu_[static_cast<std::size_t>(entity)];
+  e.update();
+  auto q = e.q();
+  const Eigen::Quaterniond qb(q(3), q(4), q(5), q(6));
+  const Eigen::Matrix3d R_base_imu = qb.toRotationMatrix().transpose() *
+                                     e.framePose(imu_frame_[static_cast<std::size_t>(entity)]).R;
+  const Eigen::Quaterniond qi(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
+  Eigen::Quaterniond qn(qi.normalized().toRotationMatrix() * R_base_imu.transpose());
+  qn.normalize();
+  q(3) = qn.w();
+  q(4) = qn.x();
+  q(5) = qn.y();
+  q(6) = qn.z();
+  const Eigen::Vector3d w(m.angular_velocity[0], m.angular_velocity[1], m.angular_velocity[2]);
+  e.v().head<3>() = R_base_imu * w;
+}
+
 void ContactEstimator::estimate() noexcept {
   // Contacts that became active freeze their relative pose at the current state.
   bool any_new = false;
@@ -214,6 +244,10 @@ void ContactEstimator::estimate() noexcept {
         p_.entity(e).update();
         known_[static_cast<std::size_t>(e)] = 2;  // updated
       }
+    }
+    if (imu_frame_[static_cast<std::size_t>(t.entity)] >= 0 && imu_fresh_[static_cast<std::size_t>(t.entity)]) {
+      applyImu(t.entity);
+      imu_fresh_[static_cast<std::size_t>(t.entity)] = 0;
     }
     const int n = gather(t, links, known_);
     if (n > 0) {

@@ -7,13 +7,17 @@
 // world-aligned frame Jacobians), and its velocities the least-squares fit of zero relative
 // twist. Entities are estimated in order: floating bases of measured robots first, then the others,
 // each from contacts whose other side is the ground or an entity already measured or estimated.
-// No IMU is fused here. Set-up allocates; estimate() is allocation-free.
+// A floating base with an IMU takes its orientation and angular velocity from the IMU (through the
+// IMU frame's pose in the base, from the measured joints) and only its position and linear
+// velocity from the contacts. Set-up allocates; estimate() is allocation-free.
 #pragma once
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <vector>
+
+#include <mrqp/drivers/device.hpp>
 
 #include "problem/multi_robot_problem.hpp"
 
@@ -24,7 +28,12 @@ class ContactEstimator {
   static constexpr int kMaxLinks = 8;  ///< contacts used per estimated entity
 
   /// `measured[e]`: entity e's joints come from its drives (a robot with hardware).
-  ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured, int iterations = 2);
+  /// `imu_frame[e]`: the frame of entity e that carries an IMU, −1 for none.
+  ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured,
+                   const std::vector<int>& imu_frame, int iterations = 2);
+
+  /// The IMU sample of entity e for this cycle's estimate (orientation in the world, body rates).
+  void setImu(int entity, const drivers::ImuFeedback& sample) noexcept;
 
   /// Records newly active contacts and estimates every entity that has contacts to fit.
   void estimate() noexcept;
@@ -55,9 +64,13 @@ class ContactEstimator {
   void fitPose(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void applyIncrement(Target& t) noexcept;
+  void applyImu(int entity) noexcept;
 
   problem::MultiRobotProblem& p_;
   std::vector<bool> measured_;
+  std::vector<int> imu_frame_;
+  std::vector<drivers::ImuFeedback> imu_;
+  std::vector<std::uint8_t> imu_fresh_;
   int iterations_;
   std::vector<Frozen> frozen_;     // per contact slot
   std::vector<Target> targets_;    // in estimation order

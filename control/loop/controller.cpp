@@ -2,6 +2,8 @@
 #include "loop/controller.hpp"
 
 #include <mrqp/drivers/arm_driver.hpp>
+#include <mrqp/drivers/ft_sensor_driver.hpp>
+#include <mrqp/drivers/imu_driver.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -100,13 +102,51 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
     if (!rr.impedance.empty()) {
       throw std::runtime_error("controller: " + rr.name + ": MIT motors and FD boards are not run by this build of the loop");
     }
-    for (const ResolvedSensor& s : rr.ft_sensors) {
-      notices_.push_back(rr.name + ": F/T sensor at " + s.frame_name + " declared (bus budget counted) but not read by this build");
+    // A bus without drives needs a SYNC of its own from the sensor drivers.
+    auto hasDrives = [&](int bus) {
+      return std::any_of(rr.drives.begin(), rr.drives.end(), [bus](const ResolvedDrive& d) { return d.bus == bus; });
+    };
+    auto routerIndex = [&](int bus) {
+      return static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), bus) - bus_of_router.begin());
+    };
+    if (!rr.ft_sensors.empty()) {
+      drivers::FtConfig fc;
+      fc.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
+      for (const ResolvedSensor& s : rr.ft_sensors) {
+        drivers::FtSensorConfig sc;
+        sc.bus = routerIndex(s.bus);
+        sc.node = static_cast<std::uint8_t>(s.node);
+        fc.sensors.push_back(sc);
+        fc.produce_sync = fc.produce_sync || !hasDrives(s.bus);
+      }
+      std::string err;
+      std::unique_ptr<drivers::FtSensorDriver> ft = drivers::FtSensorDriver::create(r.routers, fc, &err);
+      if (!ft) throw std::runtime_error("controller: " + rr.name + ": F/T sensors: " + err);
+      for (std::size_t i = 0; i < rr.ft_sensors.size(); ++i) {
+        r.ft_sensors.push_back(SensorIo{ft.get(), i, rr.ft_sensors[i].frame, rr.name + "." + rr.ft_sensors[i].frame_name, 0});
+      }
+      r.devices.push_back(std::move(ft));
     }
-    for (const ResolvedSensor& s : rr.imus) {
-      notices_.push_back(rr.name + ": IMU at " + s.frame_name + " declared (bus budget counted) but not read by this build: "
-                         "the base is the controller's own integration");
+    if (!rr.imus.empty()) {
+      drivers::ImuConfig ic;
+      ic.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
+      for (const ResolvedSensor& s : rr.imus) {
+        drivers::ImuSensorConfig sc;
+        sc.bus = routerIndex(s.bus);
+        sc.node = static_cast<std::uint8_t>(s.node);
+        ic.imus.push_back(sc);
+        ic.produce_sync = ic.produce_sync || !hasDrives(s.bus);
+      }
+      std::string err;
+      std::unique_ptr<drivers::ImuDriver> imu = drivers::ImuDriver::create(r.routers, ic, &err);
+      if (!imu) throw std::runtime_error("controller: " + rr.name + ": IMUs: " + err);
+      for (std::size_t i = 0; i < rr.imus.size(); ++i) {
+        r.imus.push_back(SensorIo{imu.get(), i, rr.imus[i].frame, rr.name + "." + rr.imus[i].frame_name, 0});
+      }
+      r.devices.push_back(std::move(imu));
     }
+    r.wrench.assign(r.ft_sensors.size(), std::array<double, 6>{});
+    r.imu.assign(r.imus.size(), drivers::ImuFeedback{});
     const std::size_t n = r.joints.size();
     r.q_cmd.assign(n, 0.0);
     r.v_cmd.assign(n, 0.0);
@@ -121,8 +161,12 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
   }
   if (options_.contact_estimation) {
     std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
-    for (const RobotIo& r : robots_) measured[static_cast<std::size_t>(r.entity)] = true;
-    estimator_ = std::make_unique<ContactEstimator>(problem_, measured);
+    std::vector<int> imu_frame(static_cast<std::size_t>(problem_.entityCount()), -1);
+    for (const RobotIo& r : robots_) {
+      measured[static_cast<std::size_t>(r.entity)] = true;
+      if (!r.imus.empty()) imu_frame[static_cast<std::size_t>(r.entity)] = r.imus.front().frame;
+    }
+    estimator_ = std::make_unique<ContactEstimator>(problem_, measured, imu_frame);
   }
 }
 
@@ -216,10 +260,16 @@ void Controller::read(drivers::TimeNs now) noexcept {
       if ((flags & fatal_) != 0u) {
         // The first device with a fatal flag names the fault.
         const std::string* where = &r.name;
-        for (std::size_t i = 0; i < rep.device_count && i < r.joints.size(); ++i) {
-          if ((rep.devices[i].flags & fatal_) != 0u) {
-            where = &r.joints[i].name;
-            break;
+        for (std::size_t i = 0; i < rep.device_count && where == &r.name; ++i) {
+          if ((rep.devices[i].flags & fatal_) == 0u) continue;
+          for (const JointIo& j : r.joints) {
+            if (j.device == d.get() && j.index == i) where = &j.name;
+          }
+          for (const SensorIo& s : r.ft_sensors) {
+            if (s.device == d.get() && s.index == i) where = &s.name;
+          }
+          for (const SensorIo& s : r.imus) {
+            if (s.device == d.get() && s.index == i) where = &s.name;
           }
         }
         trip(StopReason::DriverFault, flags & fatal_, where, now);
@@ -264,6 +314,40 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       }
       e.q()(j.q_index) += dq;
       e.v()(j.v_index) += dv;
+    }
+  }
+  for (RobotIo& r : robots_) {
+    if (!robotCycle(r)) continue;
+    for (std::size_t i = 0; i < r.ft_sensors.size(); ++i) {
+      SensorIo& s = r.ft_sensors[i];
+      const drivers::WrenchFeedback w = static_cast<drivers::WrenchDevice*>(s.device)->wrench(s.index);
+      if (!w.valid || !w.fresh) {
+        if (++s.stale > static_cast<std::uint32_t>(feedback_missing_cycles_)) {
+          trip(StopReason::StaleSensor, fault::kFeedbackMissing, &s.name, now);
+        }
+        continue;
+      }
+      s.stale = 0;
+      bool finite = true;
+      for (double x : w.wrench) finite = finite && std::isfinite(x);
+      if (!finite) {
+        trip(StopReason::NonFinite, fault::kOutOfRange, &s.name, now);
+        continue;
+      }
+      r.wrench[i] = w.wrench;
+    }
+    for (std::size_t i = 0; i < r.imus.size(); ++i) {
+      SensorIo& s = r.imus[i];
+      const drivers::ImuFeedback m = static_cast<drivers::ImuDevice*>(s.device)->imu(s.index);
+      if (!m.valid || !m.fresh) {
+        if (++s.stale > static_cast<std::uint32_t>(feedback_missing_cycles_)) {
+          trip(StopReason::StaleSensor, fault::kFeedbackMissing, &s.name, now);
+        }
+        continue;
+      }
+      s.stale = 0;
+      r.imu[i] = m;
+      if (estimator_ && i == 0) estimator_->setImu(r.entity, m);
     }
   }
   if (estimator_) estimator_->estimate();
@@ -423,6 +507,14 @@ void Controller::attachLog(LogRing& log, const std::vector<std::string>& task_na
       if (col_joints_ < 0) col_joints_ = c;
     }
   }
+  for (const RobotIo& r : robots_) {
+    for (const SensorIo& f : r.ft_sensors) {
+      const int c = log.addColumn("ft_" + f.name + "_fx");
+      log.addColumn("ft_" + f.name + "_fy");
+      log.addColumn("ft_" + f.name + "_fz");
+      if (col_ft_ < 0) col_ft_ = c;
+    }
+  }
   for (std::size_t b = 0; b < routers_.size(); ++b) {
     const int c = log.addColumn("frames_bus" + std::to_string(b));
     if (b == 0) col_buses_ = c;
@@ -452,6 +544,12 @@ void Controller::logRow(drivers::TimeNs now) noexcept {
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       row[c++] = r.q_cmd[i];
       row[c++] = r.q_meas[i];
+    }
+  }
+  c = col_ft_;
+  for (const RobotIo& r : robots_) {
+    for (std::size_t i = 0; i < r.ft_sensors.size(); ++i) {
+      for (std::size_t k = 0; k < 3; ++k) row[c++] = r.wrench[i][k];
     }
   }
   for (std::size_t b = 0; b < routers_.size(); ++b) {

@@ -26,6 +26,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
     for (const ResolvedDrive& d : r.drives) {
       drivers::SimNodeConfig nc;
       nc.name = "cia402";
+      nc.fd = hw.buses[static_cast<std::size_t>(d.bus)].decl.data_bitrate != 0;  // an FD-capable controller on an FD bus
       drivers::SimNode* node = buses_[static_cast<std::size_t>(d.bus)]->add_node(nc);
       if (node == nullptr) {
         throw std::runtime_error("emulated rig: too many nodes on one bus");
@@ -43,7 +44,55 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       o.torque_limit = limit > 0.0 ? limit : 1e9;
       drives_.push_back(DriveSlot{r.name + "." + d.joint_name, std::make_unique<PlantCia402Drive>(*node, plant, o)});
     }
+    auto frameOf = [&](const ResolvedSensor& s) {
+      const int f = plant.frameHandle(r.name, s.frame_name);
+      if (f < 0) {
+        throw std::runtime_error("emulated rig: the " + std::string(plant.kind()) + " plant has no frame '" +
+                                 s.frame_name + "' of '" + r.name + "'");
+      }
+      return f;
+    };
+    for (const ResolvedSensor& s : r.ft_sensors) {
+      drivers::SimNodeConfig nc;
+      nc.name = "ft";
+      nc.fd = hw.buses[static_cast<std::size_t>(s.bus)].decl.data_bitrate != 0;
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
+      if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
+      ft_.emplace_back(r.name + "." + s.frame_name,
+                       std::make_unique<PlantFtSensor>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
+    }
+    for (const ResolvedSensor& s : r.imus) {
+      drivers::SimNodeConfig nc;
+      nc.name = "imu";
+      nc.fd = true;
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
+      if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
+      imus_.emplace_back(r.name + "." + s.frame_name,
+                         std::make_unique<PlantImu>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
+    }
   }
+}
+
+PlantFtSensor* EmulatedRig::ftSensor(const std::string& name) noexcept {
+  for (auto& [n, s] : ft_) {
+    if (name.empty() || n == name) return s.get();
+  }
+  return nullptr;
+}
+
+PlantImu* EmulatedRig::imu(const std::string& name) noexcept {
+  for (auto& [n, s] : imus_) {
+    if (name.empty() || n == name) return s.get();
+  }
+  return nullptr;
+}
+
+const std::string& EmulatedRig::ftSensorName(const PlantFtSensor* sensor) const {
+  for (const auto& [n, s] : ft_) {
+    if (s.get() == sensor) return n;
+  }
+  static const std::string none;
+  return none;
 }
 
 void EmulatedRig::advanceTo(drivers::TimeNs t) noexcept {

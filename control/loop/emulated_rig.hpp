@@ -15,12 +15,13 @@
 #include "loop/hardware_check.hpp"
 #include "loop/plant.hpp"
 #include "loop/plant_cia402_drive.hpp"
+#include "loop/plant_ft_sensor.hpp"
+#include "loop/plant_imu.hpp"
 
 namespace mrqp::loop {
 
 class EmulatedRig {
  public:
-  /// `start` is the simulated time at which the plant is (usually 0).
   EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotProblem& problem, Plant& plant);
   EmulatedRig(const EmulatedRig&) = delete;
   EmulatedRig& operator=(const EmulatedRig&) = delete;
@@ -40,6 +41,10 @@ class EmulatedRig {
   /// The first drive, nullptr when there is none.
   PlantCia402Drive* firstDrive() noexcept { return drives_.empty() ? nullptr : drives_.front().drive.get(); }
   const std::string& driveName(const PlantCia402Drive* d) const;
+  /// F/T sensors and IMUs by "ENTITY.FRAME" (nullptr: none); with an empty name the first one.
+  PlantFtSensor* ftSensor(const std::string& name) noexcept;
+  PlantImu* imu(const std::string& name) noexcept;
+  const std::string& ftSensorName(const PlantFtSensor* s) const;
 
  private:
   struct DriveSlot {
@@ -50,6 +55,8 @@ class EmulatedRig {
   std::vector<std::unique_ptr<drivers::SimBus>> buses_;
   std::vector<drivers::SimNode*> masters_;
   std::vector<DriveSlot> drives_;
+  std::vector<std::pair<std::string, std::unique_ptr<PlantFtSensor>>> ft_;
+  std::vector<std::pair<std::string, std::unique_ptr<PlantImu>>> imus_;
   drivers::TimeNs now_ = 0;
   drivers::TimeNs max_step_ = 1000000;
 };

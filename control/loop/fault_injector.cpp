@@ -51,9 +51,15 @@ FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, Emulated
     Target t;
     const std::string spec = "--fault " + q.kind + "@" + std::to_string(q.at_s) + (q.device.empty() ? "" : ":" + q.device);
     if (q.kind == "stale-ft") {
-      throw std::invalid_argument(spec + ": this build of the loop runs no F/T sensor");
-    }
-    if (q.kind == "infeasible") {
+      if (rig == nullptr) {
+        throw std::invalid_argument(spec + ": hardware faults are injected in the emulated rig (--bus sim)");
+      }
+      t.ft = rig->ftSensor(q.device);
+      if (t.ft == nullptr) {
+        throw std::invalid_argument(spec + ": no F/T sensor " + (q.device.empty() ? "in the hardware section" : "'" + q.device + "' (an F/T sensor is ENTITY.FRAME)"));
+      }
+      r.device = rig->ftSensorName(t.ft);
+    } else if (q.kind == "infeasible") {
       // A joint of a robot: DEVICE "ENTITY.JOINT", else the first driven joint.
       for (std::size_t ri = 0; ri < controller.robots().size() && t.robot < 0; ++ri) {
         const RobotIo& rob = controller.robots()[ri];
@@ -110,6 +116,8 @@ void FaultInjector::beforeCycle(double t, drivers::TimeNs now) noexcept {
       tg.drive->breakEncoder();
     } else if (r.kind == "bus-off") {
       rig_->master(static_cast<std::size_t>(tg.bus)).inject_tx_errors(40);  // TEC 8 × 40 > 255
+    } else if (r.kind == "stale-ft") {
+      tg.ft->firmware().set_stale(true);  // the ADC stopped: the last values repeat, status STALE
     } else if (r.kind == "infeasible") {
       problem::MultiRobotProblem& p = controller_.problem();
       const RobotIo& rob = controller_.robots()[static_cast<std::size_t>(tg.robot)];

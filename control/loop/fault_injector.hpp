@@ -1,7 +1,7 @@
 // Fault injection for runs on the emulated rig (docs/loop.md, "Faults"): each fault KIND@SECONDS[:DEVICE] is
 // resolved at set-up against the hardware section and injected at its time where such a fault
-// happens — in the emulated firmware (heartbeat-loss, frame-loss, corrupt-frames, nan-feedback),
-// on the bus (bus-off: the controller's node meets a burst of bit errors) — never in the
+// happens — in the emulated firmware (heartbeat-loss, frame-loss, corrupt-frames, nan-feedback,
+// stale-ft), on the bus (bus-off: the controller's node meets a burst of bit errors) — never in the
 // controller; `infeasible` adds to the problem a joint inequality that no acceleration within the
 // joint limits can satisfy. Detection and safe-state times are read back from the controller.
 #pragma once
@@ -46,6 +46,7 @@ class FaultInjector {
  private:
   struct Target {
     PlantCia402Drive* drive = nullptr;
+    PlantFtSensor* ft = nullptr;
     int bus = -1;
     int robot = -1;
     int joint = -1;

@@ -98,9 +98,6 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
       const Cia402Group& grp = rh.cia402[g];
       const std::string field = robotField(r, "cia402[" + std::to_string(g) + "]");
       const int bus = busIndex(spec, grp.bus, grp.source, field + ".bus");
-      if (spec.buses[static_cast<std::size_t>(bus)].data_bitrate != 0) {
-        fail(grp.source, field + ".bus", "CiA 402 drives need a classic bus; '" + grp.bus + "' is CAN FD");
-      }
       claimBus(bus, robot_index, grp.source, field + ".bus");
       for (std::size_t j = 0; j < grp.joints.size(); ++j) {
         ResolvedDrive d;
@@ -152,6 +149,12 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     if (!rh.imus.empty() && !e.floatingBase()) {
       fail(rh.imus.front().source, robotField(r, "imus"), "'" + rh.entity + "' has no floating base to estimate");
     }
+    for (std::size_t i = 0; i < rob.imus.size(); ++i) {
+      if (spec.buses[static_cast<std::size_t>(rob.imus[i].bus)].data_bitrate == 0) {
+        fail(rh.imus[i].source, robotField(r, "imus[" + std::to_string(i) + "].bus"),
+             "an IMU sends CAN FD frames: bus '" + rh.imus[i].bus + "' has no data_bitrate");
+      }
+    }
     for (int k = e.jointOffset(); k < e.nv(); ++k) {
       if (e.actuated()[static_cast<std::size_t>(k)] && assigned[static_cast<std::size_t>(k)] < 0) {
         fail(rh.source, robotField(r, ""),
@@ -190,7 +193,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     if (ft > 0) {
       if (rb.decl.data_bitrate != 0) budget.add_ft_fd(ft); else budget.add_ft_classic(ft);
     }
-    if (imu > 0) budget.add_cyclic("IMU (orientation, rates, acceleration)", 3 * imu, 8, drivers::FrameFormat::Classic);
+    if (imu > 0) budget.add_imu_fd(imu);
     std::string message;
     if (!budget.check(&message)) {
       fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]", message);

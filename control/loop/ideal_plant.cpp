@@ -21,6 +21,7 @@ IdealPlant::IdealPlant(std::unique_ptr<problem::MultiRobotProblem> world, const 
   int max_nv = 0;
   for (int e = 0; e < world_->entityCount(); ++e) max_nv = std::max(max_nv, world_->entity(e).nv());
   zeros_ = Eigen::VectorXd::Zero(max_nv);
+  tracked_.assign(static_cast<std::size_t>(world_->entityCount()), 0);
 }
 
 int IdealPlant::entityHandle(const std::string& entity) const { return world_->entityIndex(entity); }
@@ -36,6 +37,11 @@ int IdealPlant::frameHandle(const std::string& entity, const std::string& frame)
   const int e = world_->entityIndex(entity);
   if (e < 0) return -1;
   const int f = world_->entity(e).frameIndex(frame);
+  if (f >= 0) {
+    // A sensor will read this frame: keep the entity's kinematics current.
+    tracked_[static_cast<std::size_t>(e)] = 1;
+    world_->entity(e).update();
+  }
   return f < 0 ? -1 : e * kStride + f;
 }
 
@@ -81,14 +87,19 @@ void IdealPlant::setServo(int joint, const ServoCommand& command) noexcept {
 Vector6d IdealPlant::sensorWrench(int) const noexcept { return Vector6d::Zero(); }
 
 ImuSample IdealPlant::imu(int frame) const noexcept {
+  // The frame's orientation; its rate and specific force as the root's (a frame fixed to the
+  // root link: the case of a pelvis IMU), the acceleration of the root neglected.
   const problem::Entity& en = world_->entity(frame / kStride);
+  const problem::Pose pose = en.framePose(frame % kStride);
   ImuSample s;
+  s.orientation = Eigen::Quaterniond(pose.R);
+  Eigen::Matrix3d R_root = en.basePose().R;
   if (en.floatingBase()) {
     const auto q = en.q();
-    s.orientation = Eigen::Quaterniond(q(3), q(4), q(5), q(6));
-    s.angular_velocity = en.v().head<3>();
-    s.specific_force = -(s.orientation.conjugate() * world_->settings().gravity);
+    R_root = Eigen::Quaterniond(q(3), q(4), q(5), q(6)).toRotationMatrix();
+    s.angular_velocity = pose.R.transpose() * (R_root * en.v().head<3>());
   }
+  s.specific_force = -(pose.R.transpose() * world_->settings().gravity);
   return s;
 }
 
@@ -107,6 +118,7 @@ void IdealPlant::step(double dt) noexcept {
     }
     // A perfect position servo holds its last target between two commands.
     for (int k = 0; k < en.nv(); ++k) applyServo(e * kStride + k);
+    if (tracked_[static_cast<std::size_t>(e)]) en.update();
   }
   time_ += dt;
 }

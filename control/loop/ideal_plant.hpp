@@ -6,9 +6,10 @@
 // the model. The world is a second problem built from the same scene, so the plant's state is
 // never the controller's.
 //
-// F/T sensors read zero here and an IMU reports the entity's root (base) frame: see docs/loop.md.
+// F/T sensors read zero here; an IMU reports its frame's orientation and the root's rates.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -58,6 +59,7 @@ class IdealPlant final : public Plant {
   std::vector<std::vector<Servo>> servos_;  // per entity, per velocity index
   std::vector<std::vector<bool>> broken_;
   Eigen::VectorXd zeros_;
+  mutable std::vector<std::uint8_t> tracked_;  // entities whose frames sensors read
   bool following_ = true;
   double time_ = 0.0;
 };

@@ -6,6 +6,7 @@
 #include <mrqp/drivers/bus_router.hpp>
 #include <mrqp/drivers/device.hpp>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,15 @@ struct JointIo {
   std::string name;            ///< "ENTITY.JOINT" (logs, set-up only)
 };
 
+/// A force/torque sensor or an IMU of a robot.
+struct SensorIo {
+  drivers::Device* device = nullptr;
+  std::size_t index = 0;       ///< sensor index within the device
+  int frame = -1;              ///< entity frame
+  std::string name;            ///< "ENTITY.FRAME"
+  std::uint32_t stale = 0;     ///< consecutive robot cycles without a fresh sample
+};
+
 struct RobotIo {
   int entity = -1;
   std::string name;
@@ -32,6 +42,10 @@ struct RobotIo {
   std::vector<std::unique_ptr<drivers::Device>> devices;  ///< owned drivers
   std::vector<drivers::BusRouter*> routers;               ///< the buses this robot's devices use
   std::vector<JointIo> joints;
+  std::vector<SensorIo> ft_sensors;
+  std::vector<SensorIo> imus;
+  std::vector<std::array<double, 6>> wrench;               ///< last F/T sample per sensor (sensor frame)
+  std::vector<drivers::ImuFeedback> imu;                   ///< last IMU sample per IMU
   // Per-joint cycle storage (sized at set-up).
   std::vector<double> q_cmd, v_cmd, tau_cmd;
   std::vector<double> q_meas, v_meas;

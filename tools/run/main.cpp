@@ -146,9 +146,11 @@ int runMain(int argc, char** argv) {
       throw std::runtime_error("--bus: " + std::to_string(o.buses.size()) + " interfaces given, the hardware section has " +
                                std::to_string(rh.buses.size()) + " buses");
     }
-    for (const std::string& name : o.buses) {
+    for (std::size_t b = 0; b < o.buses.size(); ++b) {
+      const std::string& name = o.buses[b];
       drivers::SocketCanConfig c;
       c.interface = name;
+      c.fd = rh.buses[b].decl.data_bitrate != 0;
       auto bus = std::make_unique<drivers::SocketCanBus>();
       std::string err;
       if (!bus->open(c, &err)) throw std::runtime_error("--bus " + name + ": " + err);
