@@ -187,9 +187,16 @@ int runMain(int argc, char** argv) {
   LogWriter writer(ring, o.out + "/log.csv");
 
   // ---- boot: every device booted and enabled ----
+  // Pacing (wall clock, absolute deadlines) and the time base: with simulated buses the drivers,
+  // the buses and the plant run on the simulated clock even when the cycles are paced.
   loop::DeadlineClock clock(period);
   const bool paced = o.realtime || !sim;
-  drivers::TimeNs now = paced ? clock.start() : 0;
+  const drivers::TimeNs wall0 = paced ? clock.start() : 0;
+  drivers::TimeNs now = sim ? 0 : wall0;
+  auto next = [&]() {
+    const drivers::TimeNs deadline = paced ? clock.wait() : 0;
+    return sim ? now + period : deadline;
+  };
   ctrl.startDevices(now);
   long boot = 0;
   const long boot_limit = std::lround(10.0 / dt);
@@ -200,7 +207,7 @@ int runMain(int argc, char** argv) {
     }
     const bool ready = ctrl.bootCycle(now);
     if (rig) rig->advanceTo(now + period);
-    now = paced ? clock.wait() : now + period;
+    now = next();
     if (ready) break;
   }
   if (!o.quiet) std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
@@ -230,7 +237,7 @@ int runMain(int argc, char** argv) {
                    cycle_us[static_cast<std::size_t>(k)], ctrl.lastStatus() == qp::QpStatus::Optimal ? "optimal" : "NOT optimal",
                    ctrl.safeStopped() ? "  SAFE STOP" : "");
     }
-    now = paced ? clock.wait() : now + period;
+    now = next();
   }
   if (!o.quiet) std::fprintf(stderr, "\n");
   if (paced) misses = static_cast<long>(clock.overruns() - overruns0);
