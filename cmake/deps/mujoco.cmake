@@ -7,10 +7,15 @@
 # Debian 12's CMake package of MuJoCo (mujocoTargets.cmake) names an include folder that does not
 # exist (/usr/include/libqhull_r/), which CMake refuses: the header and the library are found
 # directly instead.
+#
+# -DMRQP_WITH_MUJOCO=OFF builds without it even where it is installed.
 include_guard(GLOBAL)
-find_path(MRQP_MUJOCO_INCLUDE_DIR NAMES mujoco/mujoco.h)
-find_library(MRQP_MUJOCO_LIBRARY NAMES mujoco)
-if(MRQP_MUJOCO_INCLUDE_DIR AND MRQP_MUJOCO_LIBRARY)
+option(MRQP_WITH_MUJOCO "the MuJoCo plant (control/sim) when MuJoCo is found" ON)
+if(MRQP_WITH_MUJOCO)
+  find_path(MRQP_MUJOCO_INCLUDE_DIR NAMES mujoco/mujoco.h)
+  find_library(MRQP_MUJOCO_LIBRARY NAMES mujoco)
+endif()
+if(MRQP_WITH_MUJOCO AND MRQP_MUJOCO_INCLUDE_DIR AND MRQP_MUJOCO_LIBRARY)
   add_library(mrqp_dep::mujoco INTERFACE IMPORTED GLOBAL)
   target_include_directories(mrqp_dep::mujoco INTERFACE ${MRQP_MUJOCO_INCLUDE_DIR})
   target_link_libraries(mrqp_dep::mujoco INTERFACE ${MRQP_MUJOCO_LIBRARY})
@@ -23,5 +28,5 @@ if(MRQP_MUJOCO_INCLUDE_DIR AND MRQP_MUJOCO_LIBRARY)
     message(STATUS "mrqp: EGL, OpenGL or libpng not found: no headless rendering of the MuJoCo plant")
   endif()
 else()
-  message(STATUS "mrqp: MuJoCo (libmujoco-dev) not found: the MuJoCo plant (control/sim) is not built")
+  message(STATUS "mrqp: MuJoCo (libmujoco-dev) not found or MRQP_WITH_MUJOCO=OFF: the MuJoCo plant (control/sim) is not built")
 endif()
