@@ -184,8 +184,12 @@ Scene buildScene(const SceneSpec& spec, const ModelRegistry& models) {
     }
     const int id = p.addTask(std::move(task));
     if (id < 0) fail(ts.source, field, p.lastError());
-    if (!ts.active) p.removeTask(id);  // declared but off: the scene's program may restore it later
-    else scene.tasks[ts.name] = id;
+    if (!ts.active) {  // declared but off: the scene's program may restore it later
+      p.removeTask(id);
+      scene.inactive_tasks[ts.name] = id;
+    } else {
+      scene.tasks[ts.name] = id;
+    }
   }
 
   for (const ConstraintKindEntry& k : constraintKinds()) k.build(spec, r, p, &scene);

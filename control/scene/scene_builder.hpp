@@ -19,7 +19,9 @@ struct Scene {
   SettingsSpec settings;
   std::unique_ptr<problem::MultiRobotProblem> problem;
   std::map<std::string, int> contacts;  ///< contact name → id
-  std::map<std::string, int> tasks;     ///< task name → id
+  std::map<std::string, int> tasks;     ///< task name → id (the active ones)
+  /// Tasks declared `active: false`: built, then removed; restoreTask(id) activates one.
+  std::map<std::string, int> inactive_tasks;
   std::map<std::string, int> joint_inequalities;  ///< joint inequality name → constraint id
   std::map<std::string, int> constraints;         ///< named constraints of every kind → id
 

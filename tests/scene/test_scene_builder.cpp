@@ -109,3 +109,25 @@ TEST_CASE("Every task type of a scene file becomes the task class of that kind",
     CHECK(scene.problem->taskError(scene.task(ts.name)).norm() < 1e-12);
   }
 }
+
+TEST_CASE("A task declared inactive is built, left out of the cost and restored on demand", "[scene]") {
+  const std::string text = std::string(kArm) +
+                           "tasks:\n"
+                           "  - {name: reach, type: frame_position, entity: arm, frame: panda_hand_tcp, "
+                           "target: [0.3, 0.0, 0.5], weight: 100, active: false}\n";
+  mrqp::scene::ModelRegistry models;
+  mrqp::scene::addBuiltinModels(models);
+  auto scene = mrqp::scene::buildScene(mrqp::scene::loadSceneString(text, "s.yaml"), models);
+  auto& p = *scene.problem;
+  CHECK(scene.tasks.count("reach") == 0);
+  REQUIRE(scene.inactive_tasks.count("reach") == 1);
+  const int id = scene.inactive_tasks.at("reach");
+  CHECK_FALSE(p.taskActive(id));
+  p.update();
+  const Eigen::MatrixXd H_off = p.qp().H();  // regularisation only
+  CHECK((H_off - 1e-6 * Eigen::MatrixXd::Identity(H_off.rows(), H_off.cols())).norm() < 1e-15);
+  REQUIRE(p.restoreTask(id));
+  p.update();
+  CHECK(p.taskError(id).norm() > 0.01);  // the target is away from the hand
+  CHECK((p.qp().H() - H_off).norm() > 1.0);   // the task's 100·JᵀJ is in the cost
+}
