@@ -56,7 +56,7 @@ const std::string kBuses = "hardware:\n  buses:\n    - {name: a}\n    - {name: b
 
 }  // namespace
 
-TEST_CASE("a valid hardware section resolves joints, nodes and buses", "[loop][hardware]") {
+TEST_CASE("loop: a valid hardware section resolves joints, nodes and buses", "[loop][hardware]") {
   const std::string hw = kBuses + "  robots:\n    - entity: panda\n      divisor: 4\n" + kDrives;
   const loop::ResolvedHardware r = resolve(hw);
   REQUIRE(r.robots.size() == 1);
@@ -75,7 +75,7 @@ TEST_CASE("a valid hardware section resolves joints, nodes and buses", "[loop][h
   CHECK(r.buses[0].utilisation_worst == Approx(b.result().utilisation_worst));
 }
 
-TEST_CASE("hardware section errors name file, line and field", "[loop][hardware]") {
+TEST_CASE("loop: hardware section errors name file, line and field", "[loop][hardware]") {
   const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";  // lines 16-18
   CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, mode: cxp, joints: [panda_joint1]}\n") ==
         "s.yaml:20: hardware.robots[0].cia402[0].mode: expected csp or cst, got \"cxp\"");
@@ -103,7 +103,7 @@ TEST_CASE("hardware section errors name file, line and field", "[loop][hardware]
         "s.yaml:25: hardware.robots[0].imus: 'panda' has no floating base to estimate");
 }
 
-TEST_CASE("an over-budget bus is refused with the budget's message", "[loop][hardware]") {
+TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loop][hardware]") {
   // Eight drives at 1 kHz on one bus: ~3.7 ms of frames per 1 ms cycle.
   const std::string hw =
       "hardware:\n  buses:\n    - {name: a}\n  robots:\n    - entity: panda\n      cia402:\n"

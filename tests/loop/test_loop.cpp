@@ -42,7 +42,7 @@ std::vector<double> loopRunErrors(LoopSetup& s, long cycles) {
 
 }  // namespace
 
-TEST_CASE("panda_door on the emulated drives reaches the model run's task errors", "[loop]") {
+TEST_CASE("loop: panda_door on the emulated drives reaches the model run's task errors", "[loop]") {
   const std::string text = looptest::sceneText("panda_door.yaml");
   LoopSetup s(text, "panda_door.yaml");
   REQUIRE(s.boot());
@@ -64,7 +64,7 @@ TEST_CASE("panda_door on the emulated drives reaches the model run's task errors
   CHECK(s.ctrl->robots()[0].tracking_error_max < 0.01);
 }
 
-TEST_CASE("two runs on the simulated buses log identical values", "[loop]") {
+TEST_CASE("loop: two runs on the simulated buses log identical values", "[loop]") {
   const std::string text = looptest::sceneText("panda_door.yaml");
   auto run = [&](std::vector<double>* rows, std::vector<std::string>* cols) {
     LoopSetup s(text, "panda_door.yaml");

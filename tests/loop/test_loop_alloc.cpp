@@ -9,7 +9,7 @@
 
 using looptest::LoopSetup;
 
-TEST_CASE("10,000 loop cycles over CAN with the plant allocate nothing", "[loop][realtime]") {
+TEST_CASE("loop: 10,000 loop cycles over CAN with the plant allocate nothing", "[loop][realtime]") {
   for (const char* name : {"panda_door.yaml", "jvrc1_box.yaml"}) {
     INFO(name);
     LoopSetup s(looptest::sceneText(name), name);

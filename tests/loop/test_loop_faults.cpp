@@ -51,7 +51,7 @@ void checkTimes(const Outcome& o, double timeout) {
 
 }  // namespace
 
-TEST_CASE("fault: heartbeat loss", "[loop][faults]") {
+TEST_CASE("loop: fault: heartbeat loss", "[loop][faults]") {
   const Outcome o = runWithFault("heartbeat-loss@0.2:panda.panda_joint3");
   CHECK(o.record.device == "panda.panda_joint3");
   CHECK(o.reason == loop::StopReason::DriverFault);
@@ -60,7 +60,7 @@ TEST_CASE("fault: heartbeat loss", "[loop][faults]") {
   checkTimes(o, o.heartbeat_timeout + 0.1 + 2 * o.robot_period);
 }
 
-TEST_CASE("fault: bus-off", "[loop][faults]") {
+TEST_CASE("loop: fault: bus-off", "[loop][faults]") {
   const Outcome o = runWithFault("bus-off@0.2:arm1");
   CHECK(o.record.device == "arm1");
   CHECK(o.reason == loop::StopReason::DriverFault);
@@ -68,7 +68,7 @@ TEST_CASE("fault: bus-off", "[loop][faults]") {
   checkTimes(o, 2 * o.robot_period);
 }
 
-TEST_CASE("fault: frame loss", "[loop][faults]") {
+TEST_CASE("loop: fault: frame loss", "[loop][faults]") {
   const Outcome o = runWithFault("frame-loss@0.2", 2.0);
   CHECK(o.record.device == "panda.panda_joint1");
   CHECK(o.reason == loop::StopReason::StaleSensor);
@@ -76,27 +76,27 @@ TEST_CASE("fault: frame loss", "[loop][faults]") {
   checkTimes(o, 100 * o.robot_period);
 }
 
-TEST_CASE("fault: corrupt frames", "[loop][faults]") {
+TEST_CASE("loop: fault: corrupt frames", "[loop][faults]") {
   const Outcome o = runWithFault("corrupt-frames@0.2:panda.panda_finger_joint1");
   CHECK(o.reason == loop::StopReason::DriverFault);
   CHECK((o.flags & drivers::fault::kCorruptFrame) != 0u);
   checkTimes(o, 2 * o.robot_period);
 }
 
-TEST_CASE("fault: NaN feedback", "[loop][faults]") {
+TEST_CASE("loop: fault: NaN feedback", "[loop][faults]") {
   const Outcome o = runWithFault("nan-feedback@0.2:panda.panda_joint2");
   CHECK(o.reason == loop::StopReason::DriverFault);
   CHECK((o.flags & (drivers::fault::kEmcy | drivers::fault::kDeviceFault)) != 0u);
   checkTimes(o, 3 * o.robot_period);
 }
 
-TEST_CASE("fault: infeasible", "[loop][faults]") {
+TEST_CASE("loop: fault: infeasible", "[loop][faults]") {
   const Outcome o = runWithFault("infeasible@0.2");
   CHECK(o.reason == loop::StopReason::QpNotOptimal);
   checkTimes(o, 0.001);
 }
 
-TEST_CASE("fault: stale F/T", "[loop][faults]") {
+TEST_CASE("loop: fault: stale F/T", "[loop][faults]") {
   const Outcome o = runWithFault("stale-ft@0.2:panda.panda_link8");
   CHECK(o.record.device == "panda.panda_link8");
   // The F/T driver's own missing-feedback check (stale samples are not fresh) or the loop's.
@@ -106,7 +106,7 @@ TEST_CASE("fault: stale F/T", "[loop][faults]") {
   checkTimes(o, 5 * o.robot_period);
 }
 
-TEST_CASE("fault specs are checked", "[loop][faults]") {
+TEST_CASE("loop: fault specs are checked", "[loop][faults]") {
   CHECK_THROWS_WITH(loop::parseFaultRequest("melt@1"), Catch::Contains("unknown kind 'melt'"));
   CHECK_THROWS_WITH(loop::parseFaultRequest("bus-off"), Catch::Contains("expected KIND@SECONDS[:DEVICE]"));
   CHECK_THROWS_WITH(loop::parseFaultRequest("bus-off@x"), Catch::Contains("expected a time"));

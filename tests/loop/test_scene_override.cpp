@@ -27,7 +27,7 @@ std::string errorOf(const std::string& assignment) {
 }
 }  // namespace
 
-TEST_CASE("--set replaces one value in place", "[loop][set]") {
+TEST_CASE("loop: --set replaces one value in place", "[loop][set]") {
   CHECK(applySceneOverride(kText, "s.yaml", "settings.duration=2") ==
         std::string(kText).replace(std::string(kText).find("4.0"), 3, "2"));
   const std::string by_name = applySceneOverride(kText, "s.yaml", "tasks[door_angle].target=[-0.4]");
@@ -38,7 +38,7 @@ TEST_CASE("--set replaces one value in place", "[loop][set]") {
   CHECK(std::count(by_index.begin(), by_index.end(), '\n') == 7);
 }
 
-TEST_CASE("--set errors name file, line and path", "[loop][set]") {
+TEST_CASE("loop: --set errors name file, line and path", "[loop][set]") {
   CHECK(errorOf("tasks[7].weight=1") == "s.yaml:3: tasks: --set: no item [7] (the list has 2)");
   CHECK(errorOf("tasks[door].weight=1") == "s.yaml:3: tasks: --set: no item [door] (the list has 2)");
   CHECK(errorOf("tasks[0].colour.x=1") == "s.yaml:3: tasks[0].colour: --set: no such key");
