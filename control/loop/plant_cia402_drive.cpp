@@ -4,6 +4,7 @@
 #include <mrqp/firmware_if/arm_scale.h>
 #include <mrqp/firmware_if/cia402.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace mrqp::loop {
@@ -123,7 +124,9 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
   }
   (void)mrqp_fw_arm_position_to_inc(&scale_, q, &fb.position);
   (void)mrqp_fw_arm_velocity_to_inc(&scale_, v, &fb.velocity);
-  (void)mrqp_fw_arm_torque_to_permille(&scale_, plant_.jointTorque(j), &fb.torque);
+  // The drive's current limiter: what it measures never exceeds its torque limit.
+  const double tau = std::clamp(plant_.jointTorque(j), -options_.torque_limit, options_.torque_limit);
+  (void)mrqp_fw_arm_torque_to_permille(&scale_, tau, &fb.torque);
   return fb;
 }
 

@@ -26,11 +26,11 @@ struct PlantDriveOptions {
   int joint = -1;                 ///< plant joint handle
   bool torque_mode = false;       ///< CST (else CSP)
   double rated_torque = 100.0;    ///< N·m per 1000 ‰
-  double kp = 3000.0;             ///< CSP servo, N·m/rad
-  double kd = 60.0;               ///< N·m·s/rad
+  double kp = 20000.0;            ///< CSP servo, N·m/rad
+  double kd = 300.0;              ///< N·m·s/rad
   double torque_limit = 1e9;      ///< N·m
-  double brake_kp = 3000.0;       ///< holding brake (drive not enabled), as a stiff servo
-  double brake_kd = 100.0;
+  double brake_kp = 20000.0;       ///< holding brake (drive not enabled), as a stiff servo
+  double brake_kd = 300.0;
   drivers::TimeNs response_delay = 20000;
 };
 
