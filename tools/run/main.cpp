@@ -29,6 +29,7 @@
 #include "loop/log_ring.hpp"
 #include "loop/realtime.hpp"
 #include "loop/scene_override.hpp"
+#include "loop/timeline.hpp"
 #include "plant_factory.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
@@ -168,6 +169,8 @@ int runMain(int argc, char** argv) {
   ctrl.attachLog(ring, task_names, contact_names);
   ring.freeze(1u << 15);
   loop::FaultInjector faults(o.faults, rig.get(), ctrl, rh);
+  loop::Timeline timeline = loop::Timeline::read(text, o.scene, sc);
+  if (!timeline.events().empty()) ctrl.addHook(timeline);
 
   long cycles = o.cycles;
   if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
