@@ -485,7 +485,8 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     << w.world.str() << "</worldbody>\n";
 
   // Contact parameters per pair: explicit pairs, and the same bodies excluded from MuJoCo's
-  // dynamic detection (which would otherwise add a second contact with the defaults).
+  // dynamic detection (which would otherwise add a second contact with the defaults). A pair
+  // that does not collide is only excluded.
   std::ostringstream contact;
   for (const PairSpec& p : plant.pairs) {
     const auto geoms = [&](const std::string& e) {
@@ -494,7 +495,7 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
     const auto bodies = [&](const std::string& e) {
       return e == "ground" ? std::vector<std::string>{"world"} : w.bodies_of_entity[e];
     };
-    for (const std::string& g1 : geoms(p.a)) {
+    for (const std::string& g1 : p.collide ? geoms(p.a) : std::vector<std::string>{}) {
       for (const std::string& g2 : geoms(p.b)) {
         contact << "<pair geom1=\"" << g1 << "\" geom2=\"" << g2 << "\" condim=\"3\" friction=\""
                 << num(p.params.friction) << " " << num(p.params.friction)

@@ -220,6 +220,30 @@ void MujocoPlant::placeInitialState(const scene::SceneSpec& scene, const scene::
   }
 
   placeMimics();  // a mimic joint starts where its master puts it
+
+  // Bodies that carry something (mass, geometry, an equality) in their subtree; a sensor at a
+  // body that carries nothing measures the subtree of its nearest ancestor that does.
+  const auto nbody = static_cast<std::size_t>(model_->nbody);
+  std::vector<char> carries(nbody, 0);
+  const auto mark = [&](int b) {
+    for (; b > 0; b = model_->body_parentid[b]) carries[static_cast<std::size_t>(b)] = 1;
+  };
+  for (int b = 1; b < model_->nbody; ++b) {
+    if (model_->body_mass[b] > 0.0) mark(b);
+  }
+  for (int g = 0; g < model_->ngeom; ++g) mark(model_->geom_bodyid[g]);
+  for (int k = 0; k < model_->neq; ++k) {
+    if (model_->eq_type[k] == mjEQ_WELD || model_->eq_type[k] == mjEQ_CONNECT) {
+      mark(model_->eq_obj1id[k]);
+      mark(model_->eq_obj2id[k]);
+    }
+  }
+  sensor_body_.assign(nbody, 0);
+  for (int b = 0; b < model_->nbody; ++b) {
+    int s = b;
+    while (s > 0 && !carries[static_cast<std::size_t>(s)]) s = model_->body_parentid[s];
+    sensor_body_[static_cast<std::size_t>(b)] = s > 0 ? s : b;
+  }
   mj_forward(model_, data_);
   mj_rnePostConstraint(model_, data_);
 }
@@ -342,7 +366,7 @@ void MujocoPlant::updateDerived() noexcept {
 double MujocoPlant::time() const noexcept { return data_->time; }
 
 loop::Vector6d MujocoPlant::sensorWrench(int frame) const noexcept {
-  const int b = frame;
+  const int b = sensor_body_[static_cast<std::size_t>(frame)];
   // cfrc_int: the wrench (torque; force) the parent exerts on the subtree of b, about the
   // subtree CoM c of b's tree, world axes. mj_rnePostConstraint (MuJoCo 2.2) counts contacts and
   // equality constraints (the welds of grasps) in cfrc_ext, so cfrc_int includes what the
@@ -350,9 +374,9 @@ loop::Vector6d MujocoPlant::sensorWrench(int frame) const noexcept {
   const Eigen::Vector3d c = vec3(data_->subtree_com + 3 * model_->body_rootid[b]);
   const Eigen::Vector3d torque = -vec3(data_->cfrc_int + 6 * b);
   const Eigen::Vector3d force = -vec3(data_->cfrc_int + 6 * b + 3);
-  const Eigen::Vector3d o = vec3(data_->xpos + 3 * b);
+  const Eigen::Vector3d o = vec3(data_->xpos + 3 * frame);
   const Eigen::Vector3d torque_o = torque + (c - o).cross(force);
-  const Eigen::Matrix3d R = bodyRotation(data_, b);
+  const Eigen::Matrix3d R = bodyRotation(data_, frame);
   loop::Vector6d out;
   out.head<3>() = R.transpose() * force;
   out.tail<3>() = R.transpose() * torque_o;

@@ -14,7 +14,8 @@
 // v = (ω; v) body twist in the root-link frame, then the joint rates (MuJoCo's free joint has its
 // linear velocity in the world frame: converted here). sensorWrench: the wrench the subtree of the
 // frame's body (and everything it grasps) exerts on its parent, moment about the frame origin, in
-// the frame's axes. imu: specific force (acceleration − gravity) and angular velocity in the
+// the frame's axes; a marker frame (a link that carries nothing: no mass, geometry or weld in its
+// subtree) measures across its nearest ancestor that carries something, as a wrist sensor does. imu: specific force (acceleration − gravity) and angular velocity in the
 // frame's axes.
 //
 // Real-time: step() and every query are noexcept and allocation-free (mj_step works in mjData's
@@ -118,6 +119,7 @@ class MujocoPlant final : public loop::Plant {
   std::vector<Joint> joints_;
   std::vector<Entity> entities_;
   std::vector<Mimic> mimics_;
+  std::vector<int> sensor_body_;  // per body: the body whose subtree a sensor there measures
 };
 
 }  // namespace mrqp::sim

@@ -25,6 +25,7 @@ struct ContactParams {
 /// Parameters of the contacts between the geometry of two entities ("ground": the floor).
 struct PairSpec {
   std::string a, b;
+  bool collide = true;  ///< false: the two never touch (e.g. a hand and the object it grasps)
   ContactParams params;
   scene::Source source;
 };

@@ -127,7 +127,7 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
     const std::vector<YAML::Node> items = r.list(*p, m.at("pairs"));
     for (std::size_t i = 0; i < items.size(); ++i) {
       const std::string ip = scene::item(m.at("pairs"), i);
-      const Map pm(r, items[i], ip, {"between", "friction", "timeconst", "dampratio"});
+      const Map pm(r, items[i], ip, {"between", "collide", "friction", "timeconst", "dampratio"});
       PairSpec pair;
       pair.source = pm.source();
       const std::vector<std::string> between = r.names(pm.require("between"), pm.at("between"));
@@ -137,11 +137,12 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
       }
       pair.a = between[0];
       pair.b = between[1];
+      pair.collide = pm.boolean("collide", true);
       // The pair's own numbers over the section defaults: read it as a contact map without
       // the key "between".
       YAML::Node rest(YAML::NodeType::Map);
       for (const scene::Entry& e : pm.entries()) {
-        if (e.key != "between") {
+        if (e.key != "between" && e.key != "collide") {
           rest[e.key] = e.value;
         }
       }

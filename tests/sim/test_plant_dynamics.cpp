@@ -254,3 +254,24 @@ plant: {geoms: [{entity: box, type: box, size: [0.1, 0.1, 0.1]}]}
   CHECK(std::equal(a->data()->qvel, a->data()->qvel + nv, b->data()->qvel));
   CHECK(a->data()->ncon > 0);  // the box has landed: contacts took part
 }
+
+TEST_CASE("MuJoCo plant: a pair that does not collide passes through", "[sim]") {
+  const std::string head = R"(
+entities:
+  - name: box
+    model: rigid_object
+    mass: 1.0
+    inertia: [0.01, 0.01, 0.01]
+    pose: {xyz: [0, 0, 0.3]}
+)";
+  for (const bool collide : {true, false}) {
+    auto plant = makePlant(
+        head + "plant: {pairs: [{between: [box, ground], collide: " + (collide ? "true" : "false") + "}]}\n");
+    for (int i = 0; i < 500; ++i) plant->step(0.001);
+    Eigen::VectorXd q(7), v(6);
+    plant->entityState(plant->entityHandle("box"), q, v);
+    INFO("collide " << collide << ": z " << q(2));
+    // The box of the same inertia has sides of sqrt(6 · 0.01 / 1) = 0.245 m: it rests at 0.1225.
+    CHECK((collide ? std::abs(q(2) - 0.1225) < 0.005 : q(2) < -0.5));
+  }
+}

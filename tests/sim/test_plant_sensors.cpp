@@ -32,7 +32,7 @@ void holdAll(mrqp::sim::MujocoPlant& plant, const std::string& entity) {
 /// The wrench, in `frame`'s axes, that the weight of the bodies of the subtree at `body` (and
 /// `extra_mass` at `extra_com`) exerts about the frame origin: the statics of the distal side.
 mrqp::loop::Vector6d distalWeight(const mjModel* m, const mjData* d, int body, double extra_mass,
-                                  const Eigen::Vector3d& extra_com) {
+                                  const Eigen::Vector3d& extra_com, int at = -1) {
   double mass = extra_mass;
   Eigen::Vector3d moment_sum = extra_mass * extra_com;
   for (int b = 1; b < m->nbody; ++b) {
@@ -45,10 +45,11 @@ mrqp::loop::Vector6d distalWeight(const mjModel* m, const mjData* d, int body, d
   }
   const Eigen::Vector3d com = moment_sum / mass;
   const Eigen::Vector3d f(0, 0, -9.81 * mass);
-  const Eigen::Vector3d o(d->xpos[3 * body], d->xpos[3 * body + 1], d->xpos[3 * body + 2]);
+  const int a = at >= 0 ? at : body;  // the frame: origin and axes
+  const Eigen::Vector3d o(d->xpos[3 * a], d->xpos[3 * a + 1], d->xpos[3 * a + 2]);
   Eigen::Matrix3d R;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) R(r, c) = d->xmat[9 * body + 3 * r + c];
+    for (int c = 0; c < 3; ++c) R(r, c) = d->xmat[9 * a + 3 * r + c];
   mrqp::loop::Vector6d w;
   w.head<3>() = R.transpose() * f;
   w.tail<3>() = R.transpose() * (com - o).cross(f);
@@ -81,6 +82,24 @@ TEST_CASE("MuJoCo plant: a wrist sensor of a held arm reads the weight of the ha
   // Sign: the hand pulls its proximal side down, in world axes.
   const Eigen::Vector3d f_world = plant->framePose(frame).linear() * w.head<3>();
   CHECK(f_world.z() < 0.0);
+}
+
+TEST_CASE("MuJoCo plant: a sensor at a marker frame measures across its carrying ancestor", "[sim]") {
+  // panda_hand_tcp is a massless link without geometry fixed to the hand: a sensor there reads
+  // the hand's (and fingers') weight, about the tcp origin in the tcp's axes.
+  auto plant = makePlant(std::string(kArm) + "plant: {timestep: 0.0005}\n");
+  holdAll(*plant, "panda");
+  for (int i = 0; i < 1500; ++i) plant->step(0.001);
+  const int tcp = plant->frameHandle("panda", "panda_hand_tcp");
+  const int hand = plant->frameHandle("panda", "panda_hand");
+  REQUIRE(tcp >= 0);
+  const mrqp::loop::Vector6d w = plant->sensorWrench(tcp);
+  const mrqp::loop::Vector6d expected =
+      distalWeight(plant->model(), plant->data(), hand, 0.0, Eigen::Vector3d::Zero(), tcp);
+  INFO("measured " << w.transpose() << "\nexpected " << expected.transpose());
+  CHECK(expected.head<3>().norm() > 5.0);
+  CHECK((w.head<3>() - expected.head<3>()).norm() < 1e-3 * expected.head<3>().norm());
+  CHECK((w.tail<3>() - expected.tail<3>()).norm() < 1e-4);
 }
 
 TEST_CASE("MuJoCo plant: a grasped load adds its weight at the wrist (weld forces)", "[sim]") {
@@ -178,6 +197,7 @@ plant:
     REQUIRE(p.pairs.size() == 1);
     CHECK(p.pairs[0].params.friction == 1.2);
     CHECK(p.pairs[0].params.timeconst == 0.01);  // the section's default
+    CHECK(p.pairs[0].collide);
     CHECK(p.noise.force.stddev == 0.5);
     CHECK(p.noise.force.bias == 0.1);
     CHECK(p.noise.gyro.stddev == 0.001);
