@@ -3,7 +3,12 @@
 // the configured timeout and its safe commands go out in the cycle of detection.
 #include <catch2/catch.hpp>
 
+#include <mrqp/firmware_if/cia402.h>
+
+#include <cmath>
+
 #include "loop/fault_injector.hpp"
+#include "loop/scene_override.hpp"
 #include "loop_setup.hpp"
 
 using namespace mrqp;
@@ -114,4 +119,47 @@ TEST_CASE("loop: fault specs are checked", "[loop][faults]") {
   CHECK(r.kind == "bus-off");
   CHECK(r.at_s == 1.5);
   CHECK(r.device == "arm0");
+}
+
+TEST_CASE("loop: safe stop: position drives hold with damping", "[loop][faults]") {
+  LoopSetup s(looptest::sceneText("panda_door.yaml"), "panda_door.yaml");
+  loop::FaultInjector inj({loop::parseFaultRequest("heartbeat-loss@0.2:panda.panda_joint3")}, s.rig.get(), *s.ctrl, s.hw);
+  REQUIRE(s.boot());
+  const double dt = s.sc.settings.dt;
+  std::vector<double> v_stop;
+  long stop_cycle = -1;
+  for (long k = 0; k < 1200; ++k) {
+    inj.beforeCycle(static_cast<double>(k) * dt, s.now);
+    s.cycle();
+    if (s.ctrl->safeStopped() && stop_cycle < 0) {
+      stop_cycle = k;
+      v_stop = s.ctrl->robots()[0].v_cmd;
+    }
+  }
+  REQUIRE(stop_cycle > 0);
+  // The hold law: the commanded velocity decays by (1 − d·dt) per cycle from the cycle of the stop.
+  const loop::RobotIo& r = s.ctrl->robots()[0];
+  const double decay = std::pow(1.0 - r.hold_damping * dt, static_cast<double>(1199 - stop_cycle));
+  for (std::size_t i = 0; i < r.joints.size(); ++i) {
+    INFO(r.joints[i].name);
+    CHECK(r.v_cmd[i] == Approx(v_stop[i] * decay).margin(1e-12));
+  }
+}
+
+TEST_CASE("loop: safe stop: quick_stop robots' drives enter Quick stop active", "[loop][faults]") {
+  const std::string text = loop::applySceneOverride(looptest::sceneText("panda_door.yaml"), "panda_door.yaml",
+                                                    "hardware.robots[0].safe_stop=quick_stop");
+  LoopSetup s(text, "panda_door.yaml");
+  loop::FaultInjector inj({loop::parseFaultRequest("nan-feedback@0.2:panda.panda_joint3")}, s.rig.get(), *s.ctrl, s.hw);
+  REQUIRE(s.boot());
+  for (long k = 0; k < 400; ++k) {
+    inj.beforeCycle(static_cast<double>(k) * s.sc.settings.dt, s.now);
+    s.cycle();
+  }
+  REQUIRE(s.ctrl->safeStopped());
+  for (const char* j : {"panda.panda_joint1", "panda.panda_joint7", "panda.panda_finger_joint1"}) {
+    INFO(j);
+    CHECK(s.rig->drive(j)->state() == MRQP_FW_CIA402_QUICK_STOP_ACTIVE);
+  }
+  CHECK(s.rig->drive("panda.panda_joint3")->state() != MRQP_FW_CIA402_OPERATION_ENABLED);  // the faulted one
 }
