@@ -288,7 +288,7 @@ int runMain(int argc, char** argv) {
   }
   s.faults = faults.records();
   if (!run::writeSummaryJson(s, o.out + "/summary.json")) throw std::runtime_error(o.out + "/summary.json: cannot write");
-  if (!o.quiet || true) run::printSummary(s);
+  run::printSummary(s);
   if (o.plots) {
     std::string err;
     const std::vector<std::string> pngs = run::writePlots(o.out, ring.columns(), o.scene, &err);
