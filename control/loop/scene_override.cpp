@@ -97,7 +97,9 @@ std::string applySceneOverride(const std::string& text, const std::string& file,
   }
   YAML::Node root = scene::parseYamlDocument(text, file);
   const std::vector<Segment> segs = parsePath(path, file);
-  YAML::Node node = root;
+  // YAML::Node assignment writes through to the node it refers to: rebind with reset().
+  YAML::Node node;
+  node.reset(root);
   std::string at;
   for (std::size_t k = 0; k < segs.size(); ++k) {
     const Segment& s = segs[k];
@@ -106,7 +108,7 @@ std::string applySceneOverride(const std::string& text, const std::string& file,
       scene::Reader(file).fail(node, at, "--set: not a map, cannot hold '" + s.key + "'");
     }
     at = scene::child(at, s.key);
-    YAML::Node next = node[s.key];
+    const YAML::Node next = node[s.key];
     if (!next) {
       if (last && !s.indexed) {
         node[s.key] = value;  // a new key: re-emit the scene
@@ -116,7 +118,7 @@ std::string applySceneOverride(const std::string& text, const std::string& file,
       }
       scene::Reader(file).fail(node, at, "--set: no such key");
     }
-    node = next;
+    node.reset(next);
     if (s.indexed) {
       if (!node.IsSequence()) scene::Reader(file).fail(node, at, "--set: not a list");
       std::size_t idx = node.size();
@@ -134,7 +136,8 @@ std::string applySceneOverride(const std::string& text, const std::string& file,
                                                std::to_string(node.size()) + ")");
       }
       at = scene::item(at, idx);
-      node = node[idx];
+      const YAML::Node element = node[idx];
+      node.reset(element);
     }
   }
   std::size_t pos = 0, end = 0;

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "loop/scene_override.hpp"
+#include <yaml-cpp/yaml.h>
+
 #include "scene/scene_yaml.hpp"
 
 using mrqp::loop::applySceneOverride;
@@ -36,6 +38,15 @@ TEST_CASE("loop: --set replaces one value in place", "[loop][set]") {
   const std::string by_index = applySceneOverride(kText, "s.yaml", "tasks[1].weight=5");
   CHECK(by_index.find("    weight: 5   # small\n") != std::string::npos);
   CHECK(std::count(by_index.begin(), by_index.end(), '\n') == 7);
+}
+
+TEST_CASE("loop: --set adds a key the file does not have", "[loop][set]") {
+  const std::string out = applySceneOverride(kText, "s.yaml", "tasks[door_angle].stiffness=4");
+  const YAML::Node doc = YAML::Load(out);
+  CHECK(doc["tasks"][0]["stiffness"].as<double>() == 4.0);
+  CHECK(doc["tasks"][0]["weight"].as<double>() == 100.0);  // the rest unchanged
+  CHECK(doc["tasks"][1]["name"].as<std::string>() == "posture");
+  CHECK(doc["settings"]["duration"].as<double>() == 4.0);
 }
 
 TEST_CASE("loop: --set errors name file, line and path", "[loop][set]") {
