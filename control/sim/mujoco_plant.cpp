@@ -38,10 +38,14 @@ Eigen::Vector3d vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
 std::string where(const scene::Source& s) { return s.file + ":" + std::to_string(s.line) + ": "; }
 
+/// MuJoCo warns through this hook instead of printing; the counts stay in mjData::warning.
+void silentWarning(const char* /*message*/) {}
+
 }  // namespace
 
 MujocoPlant::MujocoPlant(const scene::SceneSpec& scene, const PlantSpec& plant,
                          const scene::ModelRegistry* registry) {
+  mju_user_warning = silentWarning;
   mjcf_ = writeMjcf(scene, plant);
   load(mjcf_.xml);
   placeInitialState(scene, registry);
@@ -451,6 +455,14 @@ void MujocoPlant::setEntityState(int entity, const Eigen::Ref<const Eigen::Vecto
   }
   placeMimics();
   updateDerived();
+}
+
+int MujocoPlant::warnings() const noexcept {
+  int n = 0;
+  for (int i = 0; i < mjNWARNING; ++i) {
+    n += data_->warning[i].number;
+  }
+  return n;
 }
 
 int MujocoPlant::entityNq(int entity) const noexcept {

@@ -77,6 +77,10 @@ class MujocoPlant final : public loop::Plant {
   /// Sizes of entityState's vectors.
   int entityNq(int entity) const noexcept;
   int entityNv(int entity) const noexcept;
+  /// MuJoCo's warnings since the start (too many contacts or constraints, a bad number in the
+  /// state that made MuJoCo reset it, ...): a run with any is not to be trusted. MuJoCo's own
+  /// printing of warnings is silenced (it would write to stdout from the cycle): read them here.
+  int warnings() const noexcept;
   /// World pose of a frame (ground truth, for logs and rendering).
   Eigen::Isometry3d framePose(int frame) const noexcept;
 

@@ -216,6 +216,7 @@ plant: {timestep: 0.0002, integrator: )" +
   }
   INFO("inertia " << inertia << ", ωn " << wn << ", worst error " << worst);
   CHECK(worst < 0.02 * step);
+  CHECK(plant->warnings() == 0);
   // The drive's torque: kp (q_ref − q) + kd (0 − v).
   const double tau = kp * (q(0) + step - plant->jointPosition(j0)) - kd * plant->jointVelocity(j0);
   CHECK(plant->jointTorque(j0) == Approx(tau).margin(1e-9));
@@ -253,6 +254,19 @@ plant: {geoms: [{entity: box, type: box, size: [0.1, 0.1, 0.1]}]}
   CHECK(std::equal(a->data()->qpos, a->data()->qpos + nq, b->data()->qpos));
   CHECK(std::equal(a->data()->qvel, a->data()->qvel + nv, b->data()->qvel));
   CHECK(a->data()->ncon > 0);  // the box has landed: contacts took part
+  CHECK(a->warnings() == 0);
+}
+
+TEST_CASE("MuJoCo plant: a diverging simulation is counted in warnings()", "[sim]") {
+  auto plant = makePlant("entities:\n  - {name: panda, model: panda}\nplant: {timestep: 0.001}\n");
+  const int j = plant->jointHandle("panda", "panda_joint7");
+  mrqp::loop::ServoCommand c;
+  c.enabled = true;
+  c.torque = 1e300;  // finite, but no state survives it
+  plant->setServo(j, c);
+  CHECK(plant->warnings() == 0);
+  for (int i = 0; i < 5; ++i) plant->step(0.001);
+  CHECK(plant->warnings() > 0);
 }
 
 TEST_CASE("MuJoCo plant: a pair that does not collide passes through", "[sim]") {
