@@ -3,7 +3,8 @@
 #
 # Runs the mrqp model generator at build time on <file> and defines a static library
 # target <name> holding the generated, allocation-free model code (namespace <name>,
-# header "<name>.hpp"). The code is regenerated whenever the URDF or the generator changes.
+# header "<name>.hpp"; target property MRQP_GENERATED_DIR: the output folder). The code is
+# regenerated whenever the URDF or the generator changes.
 # PROBE also builds <name>_probe, the standalone JSON probe program. GENERATOR_ARGS are passed
 # to mrqp-gen as they are (e.g. --allow-nonphysical-inertia, --package-path DIR).
 include_guard(GLOBAL)
@@ -43,6 +44,8 @@ function(mrqp_generate_model name)
     COMMENT "mrqp-gen: generating model ${name} from ${ARG_URDF}"
     VERBATIM)
   add_library(${name} STATIC "${out}/${name}.cpp" "${out}/${name}.hpp")
+  # The folder of the generated files, for a test that compiles them on their own.
+  set_target_properties(${name} PROPERTIES MRQP_GENERATED_DIR "${out}")
   target_include_directories(${name} PUBLIC "$<BUILD_INTERFACE:${out}>")
   target_link_libraries(${name} PUBLIC mrqp_dep::eigen)
   target_compile_features(${name} PUBLIC cxx_std_17)

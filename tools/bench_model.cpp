@@ -1,5 +1,5 @@
 // bench_model: generated model code (mrqp-gen) against the slow dynamic-size reference
-// implementation (tests/reference), on the six test models of tests/data/models.
+// implementation (tests/support), on the six models of control/model/urdf and tests/data/models.
 //
 // Benchmarks, named <model>/<function>/<side> with side "generated" or "reference":
 //   fk_all_jacobians  generated: forwardKinematics + frameJacobian(WorldAligned, origin) of every

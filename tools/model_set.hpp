@@ -1,6 +1,7 @@
-// The six generated test models (tests/data/models) behind one generic face, shared by
-// mrqp-model-summary and bench_model: a struct of static forwarding functions per generated
-// namespace, plus a fixed pseudo-random state within the joint limits.
+// The six generated models (the runtime's three of control/model, the test models of tests/support)
+// behind one generic face, shared by mrqp-model-summary and bench_model: a struct of static
+// forwarding functions per generated namespace, plus a fixed pseudo-random state within the joint
+// limits.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,48 +11,48 @@
 #include <random>
 
 #include "model/model_traits.hpp"
-#include "model_door.hpp"
-#include "model_human.hpp"
-#include "model_jvrc1.hpp"
-#include "model_panda.hpp"
-#include "model_pendulum.hpp"
-#include "model_romeo.hpp"
+#include "door_model.hpp"
+#include "human_model.hpp"
+#include "jvrc1_model.hpp"
+#include "panda_model.hpp"
+#include "pendulum_model.hpp"
+#include "romeo_model.hpp"
 
-#ifndef MRQP_TOOLS_MODELS_DIR
-#error "MRQP_TOOLS_MODELS_DIR (folder of the test URDF files) must be defined by the build"
+#if !defined(MRQP_MODELS_URDF_DIR) || !defined(MRQP_TEST_MODELS_DIR)
+#error "MRQP_MODELS_URDF_DIR (control/model/urdf) and MRQP_TEST_MODELS_DIR (tests/data/models) must be defined by the build"
 #endif
 
 namespace mrqp::tools {
 
-/// NS: generated namespace; LABEL: short model name; FILE: URDF file in MRQP_TOOLS_MODELS_DIR.
-#define MRQP_TOOLS_MODEL(NS, LABEL, FILE)                                                       \
+/// NS: generated namespace; LABEL: short model name; DIR, FILE: folder and name of the URDF file.
+#define MRQP_TOOLS_MODEL(NS, LABEL, DIR, FILE)                                                  \
   MRQP_MODEL_TRAITS(NS);                                                                        \
   struct NS##_face : NS##_model {                                                               \
     static constexpr const char* name = LABEL;                                                  \
-    static constexpr const char* urdf = MRQP_TOOLS_MODELS_DIR "/" FILE;                         \
+    static constexpr const char* urdf = DIR "/" FILE;                                           \
     static void jacobianWorld(const Data& d, int f, Jacobian& J) {                              \
       jacobian(d, f, Eigen::Vector3d::Zero(), true, J);                                         \
     }                                                                                           \
   }
 
-MRQP_TOOLS_MODEL(model_door, "door", "door.urdf");
-MRQP_TOOLS_MODEL(model_pendulum, "pendulum", "double-pendulum-continuous.urdf");
-MRQP_TOOLS_MODEL(model_panda, "panda", "panda.urdf");
-MRQP_TOOLS_MODEL(model_jvrc1, "jvrc1", "jvrc1.urdf");
-MRQP_TOOLS_MODEL(model_romeo, "romeo", "romeo.urdf");
-MRQP_TOOLS_MODEL(model_human, "human", "human-subject01-48dof.urdf");
+MRQP_TOOLS_MODEL(door_model, "door", MRQP_MODELS_URDF_DIR, "door.urdf");
+MRQP_TOOLS_MODEL(pendulum_model, "pendulum", MRQP_TEST_MODELS_DIR, "double-pendulum-continuous.urdf");
+MRQP_TOOLS_MODEL(panda_model, "panda", MRQP_MODELS_URDF_DIR, "panda.urdf");
+MRQP_TOOLS_MODEL(jvrc1_model, "jvrc1", MRQP_MODELS_URDF_DIR, "jvrc1.urdf");
+MRQP_TOOLS_MODEL(romeo_model, "romeo", MRQP_TEST_MODELS_DIR, "romeo.urdf");
+MRQP_TOOLS_MODEL(human_model, "human", MRQP_TEST_MODELS_DIR, "human-subject01-48dof.urdf");
 
 #undef MRQP_TOOLS_MODEL
 
 /// Calls f(Face{}) for every model, in table order.
 template <class F>
 void forEachModel(F&& f) {
-  f(model_door_face{});
-  f(model_pendulum_face{});
-  f(model_panda_face{});
-  f(model_jvrc1_face{});
-  f(model_romeo_face{});
-  f(model_human_face{});
+  f(door_model_face{});
+  f(pendulum_model_face{});
+  f(panda_model_face{});
+  f(jvrc1_model_face{});
+  f(romeo_model_face{});
+  f(human_model_face{});
 }
 
 inline constexpr int kModelCount = 6;

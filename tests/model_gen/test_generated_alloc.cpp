@@ -8,9 +8,9 @@
 #include <new>
 
 #include "counting_allocator.hpp"
-#include "gen_jvrc1.hpp"
-#include "gen_panda.hpp"
-#include "gen_romeo.hpp"
+#include "jvrc1_model.hpp"
+#include "panda_model.hpp"
+#include "romeo_model.hpp"
 
 namespace {
 
@@ -72,10 +72,10 @@ TEST_CASE("the counting allocator sees allocations", "[model_gen][realtime]") {
   CHECK(allocationsDuring(2, [](int) { sink = std::malloc(16); std::free(sink); }) == 2);
 }
 
-TEST_CASE("generated Panda functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(gen_panda); }
+TEST_CASE("generated Panda functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(panda_model); }
 
 TEST_CASE("generated JVRC-1 (free-flyer) functions do not allocate", "[model_gen][realtime]") {
-  MRQP_ALLOC_CHECK(gen_jvrc1);
+  MRQP_ALLOC_CHECK(jvrc1_model);
 }
 
-TEST_CASE("generated Romeo functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(gen_romeo); }
+TEST_CASE("generated Romeo functions do not allocate", "[model_gen][realtime]") { MRQP_ALLOC_CHECK(romeo_model); }

@@ -9,21 +9,22 @@
 #include <string>
 #include <vector>
 
-#include "gen_door.hpp"
-#include "gen_human.hpp"
-#include "gen_jvrc1.hpp"
-#include "gen_panda.hpp"
-#include "gen_pendulum.hpp"
-#include "gen_romeo.hpp"
+#include "door_model.hpp"
+#include "human_model.hpp"
+#include "jvrc1_model.hpp"
+#include "panda_model.hpp"
+#include "pendulum_model.hpp"
+#include "romeo_model.hpp"
 #include "model/model_traits.hpp"
+#include "model_files.hpp"
 #include "reference_model.hpp"
 
-MRQP_MODEL_TRAITS(gen_door);
-MRQP_MODEL_TRAITS(gen_pendulum);
-MRQP_MODEL_TRAITS(gen_panda);
-MRQP_MODEL_TRAITS(gen_jvrc1);
-MRQP_MODEL_TRAITS(gen_romeo);
-MRQP_MODEL_TRAITS(gen_human);
+MRQP_MODEL_TRAITS(door_model);
+MRQP_MODEL_TRAITS(pendulum_model);
+MRQP_MODEL_TRAITS(panda_model);
+MRQP_MODEL_TRAITS(jvrc1_model);
+MRQP_MODEL_TRAITS(romeo_model);
+MRQP_MODEL_TRAITS(human_model);
 
 namespace {
 
@@ -35,7 +36,7 @@ using mrqp::test::ReferenceModel;
 /// A vector or std::array position from an int loop index.
 std::size_t ix(int i) { return static_cast<std::size_t>(i); }
 
-std::string modelPath(const char* file) { return std::string(MRQP_TEST_DATA_DIR) + "/models/" + file; }
+std::string modelPath(const char* file) { return mrqp::testing::modelUrdf(file); }
 
 double maxAbs(const MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
 
@@ -253,30 +254,30 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
 
 }  // namespace
 
-TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<gen_door_model>("door.urdf", false, 0); }
+TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<door_model_model>("door.urdf", false, 0); }
 
 TEST_CASE("generated double pendulum (continuous joints) matches the reference", "[model_gen]") {
-  checkModel<gen_pendulum_model>("double-pendulum-continuous.urdf", false, 0);
+  checkModel<pendulum_model_model>("double-pendulum-continuous.urdf", false, 0);
 }
 
 TEST_CASE("generated Panda (prismatic, mimic finger) matches the reference", "[model_gen]") {
-  checkModel<gen_panda_model>("panda.urdf", false, 0);
+  checkModel<panda_model_model>("panda.urdf", false, 0);
 }
 
 TEST_CASE("generated JVRC-1 with free-flyer matches the reference", "[model_gen]") {
-  checkModel<gen_jvrc1_model>("jvrc1.urdf", true, 0);
+  checkModel<jvrc1_model_model>("jvrc1.urdf", true, 0);
 }
 
 TEST_CASE("generated Romeo matches the reference; its massless hands make M singular twice", "[model_gen]") {
-  checkModel<gen_romeo_model>("romeo.urdf", false, 2);
+  checkModel<romeo_model_model>("romeo.urdf", false, 2);
 }
 
 TEST_CASE("generated 48-dof human with free-flyer matches the reference", "[model_gen]") {
-  checkModel<gen_human_model>("human-subject01-48dof.urdf", true, 0);
+  checkModel<human_model_model>("human-subject01-48dof.urdf", true, 0);
 }
 
 TEST_CASE("integrate moves a free-flyer along the exponential of its body twist", "[model_gen]") {
-  using M = gen_jvrc1_model;
+  using M = jvrc1_model_model;
   M::ConfigVector q, q1, q2, q3;
   M::neutral(q);
   M::TangentVector v = M::TangentVector::Zero();

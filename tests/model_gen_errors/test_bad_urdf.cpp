@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "model_files.hpp"
 #include "urdf_loader.hpp"
 
 using Catch::Matchers::Contains;
@@ -17,7 +18,7 @@ using mrqp::gen::ModelError;
 namespace {
 
 std::string badFile(const std::string& name) { return std::string(MRQP_TEST_DATA_DIR) + "/bad_urdf/" + name; }
-std::string modelFile(const std::string& name) { return std::string(MRQP_TEST_DATA_DIR) + "/models/" + name; }
+std::string modelFile(const std::string& name) { return mrqp::testing::modelUrdf(name); }
 
 mrqp::gen::KinematicTree loadBad(const std::string& name) { return mrqp::gen::loadUrdfFile(badFile(name), {}); }
 

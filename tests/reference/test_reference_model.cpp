@@ -1,6 +1,7 @@
 // Tests of the slow reference model against independent facts: closed-form pendulums, finite
 // differences of kinematics and energies, Jacobian-based mass matrix and gravity torques.
 #include "reference_model.hpp"
+#include "model_files.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -23,15 +24,17 @@ using Vector6d = ReferenceModel::Vector6d;
 const std::string kDataDir = MRQP_TEST_DATA_DIR;
 constexpr double kG = 9.81;
 
+// "models/FILE": a robot model (control/model/urdf or tests/data/models); else under tests/data.
 ReferenceModel load(const std::string& relative, bool floating_base) {
+  const std::string models = "models/";
+  if (relative.compare(0, models.size(), models) == 0)
+    return ReferenceModel::fromUrdf(mrqp::testing::modelUrdf(relative.substr(models.size())), floating_base);
   return ReferenceModel::fromUrdf(kDataDir + "/" + relative, floating_base);
 }
 
 std::vector<std::string> modelFiles() {
   std::vector<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(kDataDir + "/models"))
-    if (entry.path().extension() == ".urdf") files.push_back("models/" + entry.path().filename().string());
-  std::sort(files.begin(), files.end());
+  for (const std::string& name : mrqp::testing::modelUrdfNames()) files.push_back("models/" + name);
   return files;
 }
 

@@ -4,7 +4,7 @@
 // time per call (meaningful on a quiet machine only, and never under valgrind).
 //
 //   mrqp-model-cost MODEL FUNCTION N
-//     MODEL     panda | jvrc1            (tests/data/models; jvrc1 with a floating base)
+//     MODEL     panda | jvrc1            (control/model/urdf; jvrc1 with a floating base)
 //     FUNCTION  fk | jacobians | crba | rnea | nle
 //       fk         forwardKinematics(q)
 //       jacobians  forwardKinematics(q), then frameJacobian(WorldAligned, origin) of every frame
@@ -22,14 +22,14 @@
 #include <random>
 #include <string>
 
-#include "cost_jvrc1.hpp"
-#include "cost_panda.hpp"
+#include "jvrc1_model.hpp"
+#include "panda_model.hpp"
 #include "model/model_traits.hpp"
 
 namespace {
 
-MRQP_MODEL_TRAITS(cost_panda);
-MRQP_MODEL_TRAITS(cost_jvrc1);
+MRQP_MODEL_TRAITS(panda_model);
+MRQP_MODEL_TRAITS(jvrc1_model);
 
 // Keeps every result observable, so that no call can be optimised away.
 volatile double g_sink = 0.0;
@@ -142,8 +142,8 @@ int main(int argc, char** argv) {
     return usage();
   }
   const std::string model = argv[1], fn = argv[2];
-  if (model == "panda") return run<cost_panda_model>("panda", fn, n);
-  if (model == "jvrc1") return run<cost_jvrc1_model>("jvrc1", fn, n);
+  if (model == "panda") return run<panda_model_model>("panda", fn, n);
+  if (model == "jvrc1") return run<jvrc1_model_model>("jvrc1", fn, n);
   std::fprintf(stderr, "mrqp-model-cost: unknown model '%s'\n", argv[1]);
   return usage();
 }
