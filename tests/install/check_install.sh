@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs a built mrqp tree into a scratch prefix and builds a user project that generates code
-# for panda.urdf with mrqp_generate_model() and runs it.  Usage: check_install.sh <build dir>
+# for panda.urdf with mrqp_generate_model() and runs a few cycles of tools/scenes/panda_reach.yaml
+# with it through the installed controller.  Usage: check_install.sh <build dir>
 set -euo pipefail
 build=$1
 here=$(cd "$(dirname "$0")" && pwd)
@@ -8,8 +9,9 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > /dev/null
 cmake -S "$here/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" \
-  -DPANDA_URDF="$here/../data/models/panda.urdf" > /dev/null
+  -DPANDA_URDF="$here/../../control/model/urdf/panda.urdf" > /dev/null
 cmake --build "$work/consumer" -j"$(nproc)" > /dev/null
-out=$("$work/consumer/consumer")
+out=$("$work/consumer/consumer" "$here/../../tools/scenes/panda_reach.yaml")
 echo "$out"
 grep -q '^panda nq 8 nv 8' <<<"$out"
+grep -q '^scene .*panda_reach.yaml: 20 cycles solved' <<<"$out"
