@@ -1,7 +1,7 @@
 // The fixed (model-independent) parts of a generated model's source: scalar kernels and the
-// table-driven algorithms. Written in plain scalar code on raw pointers rather than Eigen
-// expressions: Eigen's product templates cost seconds of compile time per instantiation set,
-// and every generated model would pay them again.
+// table-driven algorithms. The code is real C++ in model_gen/runtime/ (kernels.hpp,
+// chain_walks.hpp, public_functions.hpp), embedded into the generator at build time
+// (runtime/embed.cmake): the functions below return the text after each file's marker line.
 #pragma once
 
 namespace mrqp::gen {
