@@ -189,21 +189,45 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]")
     std::ofstream f(bad);
     f << "nodes:\n  - {node: 3, inertia: -1}\n";
   }
+  // Errors are "FILE:LINE: FIELD: message", as for every YAML file of mrqp (control/scene/yaml_reader).
   CHECK_FALSE(load_config(bad, &c, &err));
-  CHECK(err.find(bad) != std::string::npos);
-  CHECK(err.find("nodes[0].inertia") != std::string::npos);
+  CHECK(err == bad + ":2: nodes[0].inertia: expected a number > 0, got -1");
   {
     std::ofstream f(bad);
     f << "nodes:\n  - {node: 3, damping: abc}\n";
   }
   CHECK_FALSE(load_config(bad, &c, &err));
-  CHECK(err.find("nodes[0].damping") != std::string::npos);
+  CHECK(err == bad + ":2: nodes[0].damping: expected a number >= 0, got \"abc\"");
   {
     std::ofstream f(bad);
     f << "nodes: [1, 1]\n";
   }
   CHECK_FALSE(load_config(bad, &c, &err));
-  CHECK(err.find("appears twice") != std::string::npos);
+  CHECK(err == bad + ":1: nodes[1]: node id 1 appears twice (first at line 1)");
+  {
+    std::ofstream f(bad);
+    f << "interface: vcan0\nnodes: [1]\njiont: {inertia: 1}\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err == bad + ":3: jiont: unknown key");
+  {
+    std::ofstream f(bad);
+    f << "nodes: [1, 200]\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err == bad + ":1: nodes[1]: expected an integer in [1, 127], got 200");
+  {
+    std::ofstream f(bad);
+    f << "nodes: [1]\nfaults: {drop_fraction: 1.5}\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err == bad + ":2: faults.drop_fraction: expected a fraction in [0, 1], got 1.5");
+  {
+    std::ofstream f(bad);
+    f << "nodes:\n  - {node: 2}\n  - {inertia: 1}\n";
+  }
+  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK(err == bad + ":3: nodes[1]: missing required field 'node'");
   std::remove(good.c_str());
   std::remove(bad.c_str());
 }

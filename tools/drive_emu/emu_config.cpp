@@ -1,74 +1,131 @@
-// YAML configuration of mrqp-drive-emu (see README.md for the format).
-#include <yaml-cpp/yaml.h>
-
+// YAML configuration of mrqp-drive-emu (see README.md for the format), read with the checker of
+// every YAML file of mrqp (control/scene/yaml_reader.hpp): errors are "FILE:LINE: FIELD: message".
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include "drive_emu.hpp"
+#include "scene/yaml_reader.hpp"
 
 namespace mrqp::drive_emu {
 
 namespace {
 
-struct Fail {
-  std::string field;
-  std::string what;
-};
-
-template <typename T>
-T get(const YAML::Node& map, const char* key, const std::string& where, T fallback)
-{
-  const YAML::Node n = map[key];
-  if (!n) {
-    return fallback;
-  }
-  try {
-    return n.as<T>();
-  } catch (const std::exception&) {
-    throw Fail{where + key, "not a valid value (line " + std::to_string(n.Mark().line + 1) + ")"};
-  }
-}
+using scene::Bound;
+using scene::Map;
+using scene::Reader;
 
 TimeNs seconds_to_ns(double s) { return static_cast<TimeNs>(std::llround(s * 1e9)); }
 
-void read_faults(const YAML::Node& f, const std::string& where, NodeFaults* out)
+void read_faults(const Reader& r, const YAML::Node& f, const std::string& path, NodeFaults* out)
 {
-  if (!f) {
-    return;
+  const Map m(r, f, path, {"stop_heartbeat_at", "emcy_at", "emcy_code", "saturate_at"});
+  if (m.has("stop_heartbeat_at")) {
+    out->heartbeat_stop_at = seconds_to_ns(m.number("stop_heartbeat_at", Bound::NonNegative, 0.0));
   }
-  if (!f.IsMap()) {
-    throw Fail{where, "must be a map"};
+  if (m.has("emcy_at")) {
+    out->emcy_at = seconds_to_ns(m.number("emcy_at", Bound::NonNegative, 0.0));
   }
-  const double hb = get<double>(f, "stop_heartbeat_at", where, -1.0);
-  if (f["stop_heartbeat_at"]) {
-    if (!(hb >= 0.0)) {
-      throw Fail{where + "stop_heartbeat_at", "must be >= 0 (seconds)"};
+  out->emcy_code = static_cast<std::uint16_t>(m.integer("emcy_code", 1, 0xFFFF, out->emcy_code));
+  if (m.has("saturate_at")) {
+    out->saturate_at = seconds_to_ns(m.number("saturate_at", Bound::NonNegative, 0.0));
+  }
+}
+
+void read_joint(const Map& m, JointModel* j)
+{
+  j->inertia = m.number("inertia", Bound::Positive, j->inertia);
+  j->damping = m.number("damping", Bound::NonNegative, j->damping);
+  j->torque_limit = m.number("torque_limit", Bound::Positive, j->torque_limit);
+  j->kp = m.number("kp", Bound::NonNegative, j->kp);
+  j->kd = m.number("kd", Bound::NonNegative, j->kd);
+}
+
+/// A fraction of the frames sent, in [0, 1] (0 when absent).
+double fraction(const Map& m, const char* key)
+{
+  const double v = m.number(key, Bound::NonNegative, 0.0);
+  if (v > 1.0) {
+    m.reader().fail(*m.find(key), m.at(key), "expected a fraction in [0, 1], got " + scene::describe(*m.find(key)));
+  }
+  return v;
+}
+
+std::uint32_t rated_mNm(double n_m) { return static_cast<std::uint32_t>(std::llround(n_m * 1000.0)); }
+
+EmuConfig read_config(const Reader& r, const YAML::Node& root)
+{
+  EmuConfig c;
+  const Map top(r, root, "",
+                {"interface", "step_ms", "boot_delay_ms", "duration", "increments_per_rev", "rated_torque",
+                 "joint", "nodes", "faults"});
+  if (top.has("interface")) {
+    c.interface = top.name("interface");
+  }
+  c.step = static_cast<TimeNs>(std::llround(top.number("step_ms", Bound::Positive, 0.5) * 1e6));
+  c.boot_delay = static_cast<TimeNs>(std::llround(top.number("boot_delay_ms", Bound::NonNegative, 2.0) * 1e6));
+  c.duration_s = top.number("duration", Bound::NonNegative, 0.0);
+  const int ipr = top.integer("increments_per_rev", 1, INT_MAX, 524288);
+  const double rated = top.number("rated_torque", Bound::Positive, 1.0);
+
+  JointModel def;
+  if (const YAML::Node* j = top.find("joint")) {
+    read_joint(Map(r, *j, top.at("joint"), {"inertia", "damping", "torque_limit", "kp", "kd"}), &def);
+  }
+
+  const std::string nodes_path = top.at("nodes");
+  const std::vector<YAML::Node> nodes = r.list(top.require("nodes"), nodes_path);
+  if (nodes.empty()) {
+    r.fail(top.require("nodes"), nodes_path, "at least one node is needed");
+  }
+  std::map<int, int> first_line;  // node id -> line
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const YAML::Node& n = nodes[i];
+    const std::string path = scene::item(nodes_path, i);
+    EmuNode e;
+    e.joint = def;
+    e.scale.increments_per_rev = static_cast<std::uint32_t>(ipr);
+    e.scale.rated_torque_mNm = rated_mNm(rated);
+    YAML::Node id_node = n;
+    std::string id_path = path;
+    if (n.IsMap()) {
+      const Map m(r, n, path,
+                  {"node", "increments_per_rev", "rated_torque", "inertia", "damping", "torque_limit", "kp",
+                   "kd", "initial_position", "faults"});
+      id_node = m.require("node");
+      id_path = m.at("node");
+      e.scale.increments_per_rev = static_cast<std::uint32_t>(m.integer("increments_per_rev", 1, INT_MAX, ipr));
+      e.scale.rated_torque_mNm = rated_mNm(m.number("rated_torque", Bound::Positive, rated));
+      read_joint(m, &e.joint);
+      e.joint.initial_position = m.number("initial_position", Bound::Any, 0.0);
+      if (const YAML::Node* f = m.find("faults")) {
+        read_faults(r, *f, m.at("faults"), &e.faults);
+      }
+    } else if (!n.IsScalar()) {
+      r.fail(n, path, "expected a node id or a map, got " + scene::describe(n));
     }
-    out->heartbeat_stop_at = seconds_to_ns(hb);
-  }
-  if (f["emcy_at"]) {
-    const double t = get<double>(f, "emcy_at", where, -1.0);
-    if (!(t >= 0.0)) {
-      throw Fail{where + "emcy_at", "must be >= 0 (seconds)"};
+    const int id = r.integer(id_node, id_path, 1, 127);
+    const auto [it, inserted] = first_line.emplace(id, scene::lineOf(id_node));
+    if (!inserted) {
+      r.fail(id_node, id_path,
+             "node id " + std::to_string(id) + " appears twice (first at line " + std::to_string(it->second) + ")");
     }
-    out->emcy_at = seconds_to_ns(t);
+    e.node = static_cast<std::uint8_t>(id);
+    c.nodes.push_back(e);
   }
-  const unsigned code = get<unsigned>(f, "emcy_code", where, out->emcy_code);
-  if (code == 0u || code > 0xFFFFu) {
-    throw Fail{where + "emcy_code", "must be 1..0xFFFF"};
+
+  if (const YAML::Node* f = top.find("faults")) {
+    const Map m(r, *f, top.at("faults"), {"drop_fraction", "corrupt_fraction", "seed"});
+    c.drop_fraction = fraction(m, "drop_fraction");
+    c.corrupt_fraction = fraction(m, "corrupt_fraction");
+    c.seed = static_cast<std::uint32_t>(m.integer("seed", 0, INT_MAX, 1));
   }
-  out->emcy_code = static_cast<std::uint16_t>(code);
-  if (f["saturate_at"]) {
-    const double t = get<double>(f, "saturate_at", where, -1.0);
-    if (!(t >= 0.0)) {
-      throw Fail{where + "saturate_at", "must be >= 0 (seconds)"};
-    }
-    out->saturate_at = seconds_to_ns(t);
-  }
+  return c;
 }
 
 }  // namespace
@@ -127,105 +184,21 @@ bool validate_config(const EmuConfig& c, const std::string& origin, std::string*
 
 bool load_config(const std::string& path, EmuConfig* out, std::string* error)
 {
-  YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
+    const Reader r(path);
+    const YAML::Node root = scene::parseYamlDocument(scene::readTextFile(path), path);
+    const EmuConfig c = read_config(r, root);
+    if (!validate_config(c, path, error)) {
+      return false;
+    }
+    *out = c;
+    return true;
   } catch (const std::exception& e) {
     if (error != nullptr) {
-      *error = path + ": " + e.what();
+      *error = e.what();
     }
     return false;
   }
-  EmuConfig c;
-  try {
-    if (!root.IsMap()) {
-      throw Fail{"(top level)", "must be a map"};
-    }
-    c.interface = get<std::string>(root, "interface", "", c.interface);
-    const double step_ms = get<double>(root, "step_ms", "", 0.5);
-    if (!(step_ms > 0.0)) {
-      throw Fail{"step_ms", "must be > 0"};
-    }
-    c.step = static_cast<TimeNs>(std::llround(step_ms * 1e6));
-    c.boot_delay = static_cast<TimeNs>(std::llround(get<double>(root, "boot_delay_ms", "", 2.0) * 1e6));
-    c.duration_s = get<double>(root, "duration", "", 0.0);
-    const unsigned ipr = get<unsigned>(root, "increments_per_rev", "", 524288u);
-    const double rated = get<double>(root, "rated_torque", "", 1.0);
-    if (!(rated > 0.0)) {
-      throw Fail{"rated_torque", "must be > 0 (N m)"};
-    }
-    const YAML::Node nodes = root["nodes"];
-    if (!nodes || !nodes.IsSequence()) {
-      throw Fail{"nodes", "missing, or not a list"};
-    }
-    JointModel def;
-    if (root["joint"]) {
-      const YAML::Node j = root["joint"];
-      def.inertia = get<double>(j, "inertia", "joint.", def.inertia);
-      def.damping = get<double>(j, "damping", "joint.", def.damping);
-      def.torque_limit = get<double>(j, "torque_limit", "joint.", def.torque_limit);
-      def.kp = get<double>(j, "kp", "joint.", def.kp);
-      def.kd = get<double>(j, "kd", "joint.", def.kd);
-    }
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      const YAML::Node n = nodes[i];
-      const std::string w = "nodes[" + std::to_string(i) + "].";
-      EmuNode e;
-      e.joint = def;
-      if (n.IsScalar()) {
-        try {
-          e.node = static_cast<std::uint8_t>(std::clamp(n.as<int>(), 0, 255));
-        } catch (const std::exception&) {
-          throw Fail{"nodes[" + std::to_string(i) + "]", "not a node id"};
-        }
-        e.scale.increments_per_rev = ipr;
-        e.scale.rated_torque_mNm = static_cast<std::uint32_t>(std::llround(rated * 1000.0));
-        c.nodes.push_back(e);
-        continue;
-      }
-      if (!n.IsMap()) {
-        throw Fail{"nodes[" + std::to_string(i) + "]", "must be a node id or a map"};
-      }
-      if (!n["node"]) {
-        throw Fail{w + "node", "missing"};
-      }
-      const int id = get<int>(n, "node", w, 0);
-      e.node = static_cast<std::uint8_t>(id < 0 || id > 255 ? 0 : id);
-      e.scale.increments_per_rev = get<unsigned>(n, "increments_per_rev", w, ipr);
-      const double r = get<double>(n, "rated_torque", w, rated);
-      if (!(r > 0.0)) {
-        throw Fail{w + "rated_torque", "must be > 0 (N m)"};
-      }
-      e.scale.rated_torque_mNm = static_cast<std::uint32_t>(std::llround(r * 1000.0));
-      e.joint.inertia = get<double>(n, "inertia", w, def.inertia);
-      e.joint.damping = get<double>(n, "damping", w, def.damping);
-      e.joint.torque_limit = get<double>(n, "torque_limit", w, def.torque_limit);
-      e.joint.kp = get<double>(n, "kp", w, def.kp);
-      e.joint.kd = get<double>(n, "kd", w, def.kd);
-      e.joint.initial_position = get<double>(n, "initial_position", w, 0.0);
-      read_faults(n["faults"], w + "faults.", &e.faults);
-      c.nodes.push_back(e);
-    }
-    const YAML::Node f = root["faults"];
-    if (f) {
-      if (!f.IsMap()) {
-        throw Fail{"faults", "must be a map"};
-      }
-      c.drop_fraction = get<double>(f, "drop_fraction", "faults.", 0.0);
-      c.corrupt_fraction = get<double>(f, "corrupt_fraction", "faults.", 0.0);
-      c.seed = get<unsigned>(f, "seed", "faults.", 1u);
-    }
-  } catch (const Fail& e) {
-    if (error != nullptr) {
-      *error = path + ": " + e.field + ": " + e.what;
-    }
-    return false;
-  }
-  if (!validate_config(c, path, error)) {
-    return false;
-  }
-  *out = c;
-  return true;
 }
 
 bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* c, std::string* error)
