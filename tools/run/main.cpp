@@ -167,7 +167,7 @@ int runMain(int argc, char** argv) {
   for (const auto& [name, id] : sc.contacts) contact_names[static_cast<std::size_t>(id)] = name;
   loop::LogRing ring;
   ctrl.attachLog(ring, task_names, contact_names);
-  ring.freeze(1u << 15);
+  ring.freeze(1u << 13);  // 8 s of rows at 1 kHz: the writer drains every 2 ms
   loop::FaultInjector faults(o.faults, rig.get(), ctrl, rh);
   loop::Timeline timeline = loop::Timeline::read(text, o.scene, sc);
   if (!timeline.events().empty()) ctrl.addHook(timeline);
