@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: generate allocation-free model code for every URDF in ../shared/models
-# (tests/data/models when that folder is absent), compile it and print a summary table per model
+# (control/model/urdf and tests/data/models when that folder is absent), compile it and print a summary table per model
 # (links, joints, nq, nv, mass, timing of the generated functions); then run the multi-robot QP
 # scenes of tools/scenes closed loop and plot them (build/demo/*.png).
 set -euo pipefail
@@ -10,7 +10,12 @@ jobs=$(nproc)
 
 ./tools/setup-deps.sh
 models="$root/../shared/models"
-[ -d "$models" ] || models="$root/tests/data/models"
+if [ -d "$models" ]; then
+  urdfs=("$models"/*.urdf)
+else
+  urdfs=("$root/control/model/urdf"/*.urdf "$root/tests/data/models"/*.urdf)
+  models="control/model/urdf and tests/data/models"
+fi
 
 echo "== building mrqp-gen and the summary tool (Release)" >&2
 cmake -S . -B build/demo -DCMAKE_BUILD_TYPE=Release -DMRQP_BUILD_TESTS=OFF > /dev/null
@@ -20,7 +25,7 @@ cmake --build build/demo -j"$jobs" --target mrqp-gen mrqp-model-summary > build/
 echo "== generating models from $models" >&2
 out="$root/build/demo/generated"
 mkdir -p "$out"
-for urdf in "$models"/*.urdf; do
+for urdf in "${urdfs[@]}"; do
   base=$(basename "$urdf" .urdf)
   name=$(echo "$base" | tr -c 'A-Za-z0-9_\n' '_')
   flags=()

@@ -1,5 +1,5 @@
 // Generated model code against the independent slow reference (tests/reference) and against
-// finite differences, on every URDF of tests/data/models.
+// finite differences, on the six models (control/model/urdf, tests/data/models).
 #include <catch2/catch.hpp>
 
 #include <Eigen/Eigenvalues>
