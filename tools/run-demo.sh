@@ -2,7 +2,10 @@
 # The main job: generate allocation-free model code for every URDF in ../shared/models
 # (control/model/urdf and tests/data/models when that folder is absent), compile it and print a summary table per model
 # (links, joints, nq, nv, mass, timing of the generated functions); then run the multi-robot QP
-# scenes of tools/scenes closed loop and plot them (build/demo/*.png).
+# scenes of tools/scenes closed loop and plot them (build/demo/*.png); last, the controller loop
+# (mrqp-run) runs the co-manipulation scene over CAN: simulated buses carrying the emulated drive,
+# F/T and IMU firmware, the plant behind them; summary, log and plots in build/demo/comanipulation,
+# and a rendering of the scene where the build has MuJoCo.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -56,3 +59,16 @@ for scene in jvrc1_box panda_door; do
     --csv "build/demo/$scene.csv" --plot "build/demo/$scene.png"
 done
 echo "(logs and plots: build/demo/jvrc1_box.{csv,png}, build/demo/panda_door.{csv,png})" >&2
+
+echo "== the controller loop over CAN: co-manipulation (mrqp-run, docs/loop.md)" >&2
+cmake --build build/demo -j"$jobs" --target mrqp-run > build/demo-build.log 2>&1 \
+  || { tail -40 build/demo-build.log; exit 1; }
+run_out="$root/build/demo/comanipulation"
+./build/demo/tools/run/mrqp-run tools/scenes/comanipulation.yaml --out "$run_out"
+if cmake --build build/demo -j"$jobs" --target mrqp-render > build/demo-build.log 2>&1; then
+  ./build/demo/tools/render/mrqp-render tools/scenes/comanipulation.yaml --out "$run_out" \
+    || echo "(rendering failed: no picture of the scene)" >&2
+else
+  echo "(this build has no MuJoCo: no rendering of the scene)" >&2
+fi
+echo "(summary, log and plots: build/demo/comanipulation/{summary.json,log.csv,*.png})" >&2
