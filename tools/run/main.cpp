@@ -152,6 +152,7 @@ int runMain(int argc, char** argv) {
       drivers::SocketCanConfig c;
       c.interface = name;
       c.fd = rh.buses[b].decl.data_bitrate != 0;
+      c.receive_own = true;  // the arm master takes a boot-up only after its reset's own echo
       auto bus = std::make_unique<drivers::SocketCanBus>();
       std::string err;
       if (!bus->open(c, &err)) throw std::runtime_error("--bus " + name + ": " + err);

@@ -181,6 +181,7 @@ int main(int argc, char** argv)
   SocketCanBus bus;
   SocketCanConfig sc;
   sc.interface = o.interface;
+  sc.receive_own = true;  // the arm master takes a boot-up only after its reset's own echo
   std::string err;
   if (!bus.open(sc, &err)) {
     std::fprintf(stderr, "mrqp-stream: %s: %s\n", o.interface.c_str(), err.c_str());
