@@ -93,8 +93,8 @@ TEST_CASE("big-endian bit fields round-trip at any offset and leave other bits a
       if (pos >= offset && pos < offset + nbits) {
         continue;
       }
-      const unsigned a = (buf[pos / 8] >> (7 - pos % 8)) & 1u;
-      const unsigned b = (before[pos / 8] >> (7 - pos % 8)) & 1u;
+      const unsigned a = (static_cast<unsigned>(buf[pos / 8]) >> (7 - pos % 8)) & 1u;
+      const unsigned b = (static_cast<unsigned>(before[pos / 8]) >> (7 - pos % 8)) & 1u;
       REQUIRE(a == b);
     }
   }

@@ -30,6 +30,7 @@
 #include "loop/realtime.hpp"
 #include "loop/scene_override.hpp"
 #include "loop/timeline.hpp"
+#include "motion_track.hpp"
 #include "plant_factory.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
@@ -176,6 +177,7 @@ int runMain(int argc, char** argv) {
   long cycles = o.cycles;
   if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
   std::vector<double> cycle_us(static_cast<std::size_t>(cycles), 0.0);
+  run::MotionTrack motion(*plant, p, static_cast<double>(cycles) * dt, 30.0);
 
   if (!o.quiet) {
     std::printf("mrqp-run: %s: %d entities, %zu tasks, %zu contacts; plant %s, %s; %ld cycles of %g ms\n",
@@ -231,6 +233,7 @@ int runMain(int argc, char** argv) {
     ctrl.cycle(now);
     run::armAllocationCounter(false);
     faults.afterCycle();
+    if (o.plots && motion.due(static_cast<double>(k) * dt)) motion.capture(static_cast<double>(k) * dt);
     if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
     const drivers::TimeNs total = ctrl.lastTiming().total_ns;
     cycle_us[static_cast<std::size_t>(k)] = static_cast<double>(total) * 1e-3;
@@ -296,6 +299,14 @@ int runMain(int argc, char** argv) {
     if (!err.empty()) std::fprintf(stderr, "mrqp-run: plots: %s\n", err.c_str());
     if (!o.quiet) {
       for (const std::string& f : pngs) std::printf("mrqp-run: plot %s\n", f.c_str());
+    }
+  }
+  if (o.plots) {
+    try {
+      const std::string what = motion.render(spec, text, o.scene, models, o.out);
+      if (!o.quiet) std::printf("mrqp-run: motion %s\n", what.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mrqp-run: motion: %s (no rendering)\n", e.what());
     }
   }
   std::printf("mrqp-run: wrote %s/summary.json and %s/log.csv\n", o.out.c_str(), o.out.c_str());
