@@ -71,4 +71,4 @@ if cmake --build build/demo -j"$jobs" --target mrqp-render > build/demo-build.lo
 else
   echo "(this build has no MuJoCo: no rendering of the scene)" >&2
 fi
-echo "(summary, log and plots: build/demo/comanipulation/{summary.json,log.csv,*.png})" >&2
+echo "(summary, log, plots and motion: build/demo/comanipulation/{summary.json,log.csv,*.png,motion.mp4})" >&2
