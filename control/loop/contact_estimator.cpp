@@ -68,7 +68,9 @@ ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const st
       t.b.setZero(6 * kMaxLinks);
       t.N.setZero(t.count, t.count);
       t.x.setZero(t.count);
-      t.ldlt = Eigen::LDLT<Eigen::MatrixXd>(t.count);
+      // Sizes the factorisation's storage before the cycle, and gives it a defined status (Eigen's
+      // sized constructor leaves it uninitialised, and moving the object reads it).
+      t.ldlt.compute(Eigen::MatrixXd::Identity(t.count, t.count));
       targets_.push_back(std::move(t));
     }
   }
