@@ -39,6 +39,7 @@
 //               --benchmark_filter='BM_(en|de)code/mit'
 #include <benchmark/benchmark.h>
 
+#include <mrqp/firmware_if/firmware_if.h>
 #include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/drivers/bus.hpp>
 #include <mrqp/drivers/bus_router.hpp>
@@ -46,7 +47,6 @@
 #include <mrqp/drivers/ft_sensor_driver.hpp>
 #include <mrqp/drivers/mit_hand_driver.hpp>
 #include <mrqp/drivers/sim_bus.hpp>
-#include <mrqp/firmware_if/firmware_if.h>
 
 #include <algorithm>
 #include <array>
@@ -76,8 +76,7 @@ struct Rng {
   double real(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen); }
   float realf(float lo, float hi) { return static_cast<float>(real(lo, hi)); }
   unsigned uint(unsigned lo, unsigned hi) { return std::uniform_int_distribution<unsigned>(lo, hi)(gen); }
-  std::int32_t int32(std::int32_t lo, std::int32_t hi)
-  {
+  std::int32_t int32(std::int32_t lo, std::int32_t hi) {
     return std::uniform_int_distribution<std::int32_t>(lo, hi)(gen);
   }
   std::uint8_t byte() { return static_cast<std::uint8_t>(uint(0, 255)); }
@@ -85,8 +84,7 @@ struct Rng {
 };
 
 /// Counters common to every benchmark: frames per second and CPU time per frame.
-void report(benchmark::State& state, int frames)
-{
+void report(benchmark::State& state, int frames) {
   state.SetItemsProcessed(state.iterations() * frames);
   state.counters["frames_per_iter"] = frames;
   state.counters["per_frame"] =
@@ -94,8 +92,7 @@ void report(benchmark::State& state, int frames)
 }
 
 /// Adds the "max" aggregate (slowest repetition) to a benchmark.
-benchmark::internal::Benchmark* with_max(benchmark::internal::Benchmark* b)
-{
+benchmark::internal::Benchmark* with_max(benchmark::internal::Benchmark* b) {
   return b->ComputeStatistics("max", [](const std::vector<double>& v) {
     return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
   });
@@ -104,8 +101,7 @@ benchmark::internal::Benchmark* with_max(benchmark::internal::Benchmark* b)
 /// Times fn(i) for i = 0, 1, ... (mod kRing). fn returns non-zero on a failure (a pack error bit
 /// or an unpack error code); the ring is checked once before timing.
 template <class Fn>
-void run(benchmark::State& state, int frames, Fn&& fn)
-{
+void run(benchmark::State& state, int frames, Fn&& fn) {
   for (std::size_t i = 0; i < kRing; ++i) {
     if (fn(i) != 0u) {
       state.SkipWithError(("input " + std::to_string(i) + " fails").c_str());
@@ -139,8 +135,7 @@ struct Message {
   Pack pack;
   Unpack unpack;
 
-  Message(std::uint32_t seed, Make make, Pack p, Unpack u) : pack(p), unpack(u)
-  {
+  Message(std::uint32_t seed, Make make, Pack p, Unpack u) : pack(p), unpack(u) {
     Rng rng(seed);
     for (std::size_t i = 0; i < kRing; ++i) {
       in[i] = make(rng, i);
@@ -150,8 +145,7 @@ struct Message {
       (void)pack(in[i], frames[i].data());
     }
   }
-  void encode(benchmark::State& state)
-  {
+  void encode(benchmark::State& state) {
     std::array<mrqp_fw_frame, F> out{};
     run(state, static_cast<int>(F), [&](std::size_t i) {
       const std::uint32_t e = pack_err(pack(in[i], out.data()));
@@ -159,17 +153,16 @@ struct Message {
       return e;
     });
   }
-  void decode(benchmark::State& state)
-  {
-    run(state, static_cast<int>(F), [&](std::size_t i) { return unpack_err(unpack(frames[i].data(), in[i])); });
+  void decode(benchmark::State& state) {
+    run(state, static_cast<int>(F),
+        [&](std::size_t i) { return unpack_err(unpack(frames[i].data(), in[i])); });
   }
 };
 
 /// Registers BM_encode/<name> and (with decode) BM_decode/<name> for one message kind.
 template <class In, std::size_t F, class Make, class Pack, class Unpack>
-void add_message(const char* name, std::uint32_t seed, Make make, Pack pack, Unpack unpack, bool decode = true,
-                 bool encode = true)
-{
+void add_message(const char* name, std::uint32_t seed, Make make, Pack pack, Unpack unpack,
+                 bool decode = true, bool encode = true) {
   using M = Message<In, F, Make, Pack, Unpack>;
   auto msg = std::make_shared<M>(seed, make, pack, unpack);
   if (encode) {
@@ -249,8 +242,7 @@ struct FtIn {
   unsigned tare;
 };
 
-SdoIn make_sdo(Rng& r, std::size_t i)
-{
+SdoIn make_sdo(Rng& r, std::size_t i) {
   SdoIn s{};
   s.node = node_of(i);
   s.index = static_cast<std::uint16_t>(0x6000u + r.uint(0, 0xFFF));
@@ -269,15 +261,13 @@ SdoIn make_sdo(Rng& r, std::size_t i)
 
 mrqp_fw_sdo_msg g_sdo_msg;  // decode output, outside the loop's registers
 
-std::uint32_t sdo_decode(const mrqp_fw_frame* f)
-{
+std::uint32_t sdo_decode(const mrqp_fw_frame* f) {
   const mrqp_fw_err e = mrqp_fw_sdo_unpack(f, &g_sdo_msg);
   benchmark::DoNotOptimize(g_sdo_msg);
   return unpack_err(e);
 }
 
-ArmPdoIn make_arm(Rng& r, std::size_t i)
-{
+ArmPdoIn make_arm(Rng& r, std::size_t i) {
   ArmPdoIn a{};
   a.node = 1u + static_cast<unsigned>(i % 7u);
   static constexpr std::uint16_t kCw[4] = {0x0006, 0x0007, 0x000F, 0x010F};
@@ -291,21 +281,20 @@ ArmPdoIn make_arm(Rng& r, std::size_t i)
   return a;
 }
 
-MitIn make_mit(Rng& r, std::size_t i)
-{
+MitIn make_mit(Rng& r, std::size_t i) {
   MitIn m{};
   m.id = 1u + static_cast<unsigned>(i % 20u);
   m.cmd = {r.realf(-3.0f, 3.0f), r.realf(-20.0f, 20.0f), r.realf(0.0f, 200.0f), r.realf(0.0f, 3.0f),
            r.realf(-5.0f, 5.0f)};
-  m.reply = {static_cast<std::uint8_t>(m.id), r.realf(-3.0f, 3.0f), r.realf(-20.0f, 20.0f), r.realf(-5.0f, 5.0f)};
+  m.reply = {static_cast<std::uint8_t>(m.id), r.realf(-3.0f, 3.0f), r.realf(-20.0f, 20.0f),
+             r.realf(-5.0f, 5.0f)};
   static constexpr mrqp_fw_mit_kind kSpecial[3] = {MRQP_FW_MIT_KIND_ENABLE, MRQP_FW_MIT_KIND_DISABLE,
                                                    MRQP_FW_MIT_KIND_ZERO};
   m.special = kSpecial[i % 3];
   return m;
 }
 
-HandIn make_hand(Rng& r, std::size_t i)
-{
+HandIn make_hand(Rng& r, std::size_t i) {
   HandIn h{};
   h.board = static_cast<unsigned>(i % 16u);
   for (std::size_t k = 0; k < 2; ++k) {
@@ -318,7 +307,8 @@ HandIn make_hand(Rng& r, std::size_t i)
     f.cmd_seq_echo = c.seq;
     f.counter = static_cast<std::uint8_t>(2 * i + k);
     f.mode = c.mode;
-    f.status = static_cast<std::uint8_t>(MRQP_FW_HAND_STATUS_ENABLED | ((i % 7u) == 0u ? MRQP_FW_HAND_STATUS_LIMIT : 0u));
+    f.status = static_cast<std::uint8_t>(MRQP_FW_HAND_STATUS_ENABLED |
+                                         ((i % 7u) == 0u ? MRQP_FW_HAND_STATUS_LIMIT : 0u));
     f.first_joint = c.first_joint;
     f.count = c.count;
     for (std::size_t j = 0; j < c.count; ++j) {
@@ -329,8 +319,7 @@ HandIn make_hand(Rng& r, std::size_t i)
   return h;
 }
 
-FtIn make_ft(Rng& r, std::size_t i)
-{
+FtIn make_ft(Rng& r, std::size_t i) {
   FtIn t{};
   t.node = 0x30u + static_cast<unsigned>(i & 1u);
   for (std::size_t k = 0; k < 3; ++k) {
@@ -345,14 +334,14 @@ FtIn make_ft(Rng& r, std::size_t i)
   return t;
 }
 
-void register_messages()
-{
+void register_messages() {
   // ---- CANopen: NMT, SYNC, heartbeat, EMCY ----
   add_message<NmtIn, 1>(
       "nmt", 1,
       [](Rng& r, std::size_t i) {
-        static constexpr mrqp_fw_nmt_cmd kCmd[5] = {MRQP_FW_NMT_START, MRQP_FW_NMT_STOP, MRQP_FW_NMT_ENTER_PREOP,
-                                                    MRQP_FW_NMT_RESET_NODE, MRQP_FW_NMT_RESET_COMM};
+        static constexpr mrqp_fw_nmt_cmd kCmd[5] = {MRQP_FW_NMT_START, MRQP_FW_NMT_STOP,
+                                                    MRQP_FW_NMT_ENTER_PREOP, MRQP_FW_NMT_RESET_NODE,
+                                                    MRQP_FW_NMT_RESET_COMM};
         return NmtIn{kCmd[r.uint(0, 4)], (i % 8u) == 0u ? 0u : node_of(i)};
       },
       [](const NmtIn& in, mrqp_fw_frame* f) { return mrqp_fw_nmt_pack(in.cmd, in.node, f); },
@@ -365,7 +354,8 @@ void register_messages()
         return e;
       });
   add_message<unsigned, 1>(
-      "sync", 2, [](Rng& r, std::size_t i) { return (i % 8u) == 0u ? 0u : r.uint(1, MRQP_FW_SYNC_COUNTER_MAX); },
+      "sync", 2,
+      [](Rng& r, std::size_t i) { return (i % 8u) == 0u ? 0u : r.uint(1, MRQP_FW_SYNC_COUNTER_MAX); },
       [](const unsigned& counter, mrqp_fw_frame* f) { return mrqp_fw_sync_pack(counter, f); },
       [](const mrqp_fw_frame* f, const unsigned&) {
         std::uint8_t counter;
@@ -393,9 +383,12 @@ void register_messages()
   add_message<EmcyIn, 1>(
       "emcy", 4,
       [](Rng& r, std::size_t i) {
-        static constexpr std::uint16_t kCode[6] = {MRQP_FW_EMCY_NO_ERROR, MRQP_FW_EMCY_CONTINUOUS_OVER_CURRENT,
-                                                   MRQP_FW_EMCY_DC_LINK_UNDER_VOLTAGE, MRQP_FW_EMCY_HEARTBEAT_ERROR,
-                                                   MRQP_FW_EMCY_FOLLOWING_ERROR, MRQP_FW_EMCY_RPDO_TIMEOUT};
+        static constexpr std::uint16_t kCode[6] = {MRQP_FW_EMCY_NO_ERROR,
+                                                   MRQP_FW_EMCY_CONTINUOUS_OVER_CURRENT,
+                                                   MRQP_FW_EMCY_DC_LINK_UNDER_VOLTAGE,
+                                                   MRQP_FW_EMCY_HEARTBEAT_ERROR,
+                                                   MRQP_FW_EMCY_FOLLOWING_ERROR,
+                                                   MRQP_FW_EMCY_RPDO_TIMEOUT};
         EmcyIn e{};
         e.node = node_of(i);
         e.emcy.error_code = kCode[i % 6];
@@ -416,7 +409,9 @@ void register_messages()
       });
 
   // ---- CANopen SDO: every frame kind of the contract (decode: mrqp_fw_sdo_unpack) ----
-  const auto sdo_unpack = [](const mrqp_fw_frame* f, const SdoIn&) { return static_cast<mrqp_fw_err>(sdo_decode(f)); };
+  const auto sdo_unpack = [](const mrqp_fw_frame* f, const SdoIn&) {
+    return static_cast<mrqp_fw_err>(sdo_decode(f));
+  };
   add_message<SdoIn, 1>(
       "sdo_download_expedited", 10, make_sdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
@@ -425,7 +420,9 @@ void register_messages()
       sdo_unpack);
   add_message<SdoIn, 1>(
       "sdo_download_resp", 11, make_sdo,
-      [](const SdoIn& s, mrqp_fw_frame* f) { return mrqp_fw_sdo_pack_download_resp(s.node, s.index, s.sub, f); },
+      [](const SdoIn& s, mrqp_fw_frame* f) {
+        return mrqp_fw_sdo_pack_download_resp(s.node, s.index, s.sub, f);
+      },
       sdo_unpack);
   add_message<SdoIn, 1>(
       "sdo_upload_req", 12, make_sdo,
@@ -452,12 +449,15 @@ void register_messages()
   add_message<SdoIn, 1>(
       "sdo_segment", 16, make_sdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
-        return mrqp_fw_sdo_pack_segment(s.node, s.from_server, s.toggle, s.data.data(), s.value % 8u, s.last, f);
+        return mrqp_fw_sdo_pack_segment(s.node, s.from_server, s.toggle, s.data.data(), s.value % 8u, s.last,
+                                        f);
       },
       sdo_unpack);
   add_message<SdoIn, 1>(
       "sdo_download_seg_resp", 17, make_sdo,
-      [](const SdoIn& s, mrqp_fw_frame* f) { return mrqp_fw_sdo_pack_download_seg_resp(s.node, s.toggle, f); },
+      [](const SdoIn& s, mrqp_fw_frame* f) {
+        return mrqp_fw_sdo_pack_download_seg_resp(s.node, s.toggle, f);
+      },
       sdo_unpack);
   add_message<SdoIn, 1>(
       "sdo_upload_seg_req", 18, make_sdo,
@@ -467,14 +467,16 @@ void register_messages()
       "sdo_abort", 19, make_sdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         static constexpr std::uint32_t kAbort[4] = {MRQP_FW_SDO_ABORT_TIMEOUT, MRQP_FW_SDO_ABORT_NO_OBJECT,
-                                                    MRQP_FW_SDO_ABORT_TYPE_LENGTH, MRQP_FW_SDO_ABORT_STORE_STATE};
+                                                    MRQP_FW_SDO_ABORT_TYPE_LENGTH,
+                                                    MRQP_FW_SDO_ABORT_STORE_STATE};
         return mrqp_fw_sdo_pack_abort(s.node, s.from_server, s.index, s.sub, kAbort[s.value % 4u], f);
       },
       sdo_unpack);
 
   // ---- CiA 402 PDOs of the arm drives ----
   add_message<ArmPdoIn, 1>(
-      "rpdo1", 20, make_arm, [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_rpdo1(a.node, &a.rpdo1, f); },
+      "rpdo1", 20, make_arm,
+      [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_rpdo1(a.node, &a.rpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_rpdo1 p;
         const mrqp_fw_err e = mrqp_fw_arm_unpack_rpdo1(f, a.node, &p);
@@ -485,11 +487,13 @@ void register_messages()
   add_message<ArmPdoIn, 1>(
       "rpdo1_si", 21, make_arm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) {
-        return mrqp_fw_arm_pack_rpdo1_si(&kArmScale, a.node, a.rpdo1.controlword, a.position_rad, a.torque_nm, f);
+        return mrqp_fw_arm_pack_rpdo1_si(&kArmScale, a.node, a.rpdo1.controlword, a.position_rad, a.torque_nm,
+                                         f);
       },
       [](const mrqp_fw_frame*, const ArmPdoIn&) { return MRQP_FW_OK; }, /*decode=*/false);
   add_message<ArmPdoIn, 1>(
-      "tpdo1", 22, make_arm, [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
+      "tpdo1", 22, make_arm,
+      [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo1 p;
         const mrqp_fw_err e = mrqp_fw_arm_unpack_tpdo1(f, a.node, &p);
@@ -498,7 +502,8 @@ void register_messages()
       });
   // The host's path: statusword, position (rad) and torque (N m).
   add_message<ArmPdoIn, 1>(
-      "tpdo1_si", 23, make_arm, [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
+      "tpdo1_si", 23, make_arm,
+      [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo1 p;
         double rad = 0.0;
@@ -513,7 +518,8 @@ void register_messages()
       },
       /*decode=*/true, /*encode=*/false);
   add_message<ArmPdoIn, 1>(
-      "tpdo2", 24, make_arm, [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
+      "tpdo2", 24, make_arm,
+      [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo2 p;
         const mrqp_fw_err e = mrqp_fw_arm_unpack_tpdo2(f, a.node, &p);
@@ -521,7 +527,8 @@ void register_messages()
         return e;
       });
   add_message<ArmPdoIn, 1>(
-      "tpdo2_si", 25, make_arm, [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
+      "tpdo2_si", 25, make_arm,
+      [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo2 p;
         double rad_s = 0.0;
@@ -552,7 +559,8 @@ void register_messages()
       [](const mrqp_fw_frame* f, const MitIn&) {
         const mrqp_fw_mit_kind k = mrqp_fw_mit_classify(f);
         benchmark::DoNotOptimize(k);
-        return k == MRQP_FW_MIT_KIND_INVALID || k == MRQP_FW_MIT_KIND_COMMAND ? MRQP_FW_ERR_FORMAT : MRQP_FW_OK;
+        return k == MRQP_FW_MIT_KIND_INVALID || k == MRQP_FW_MIT_KIND_COMMAND ? MRQP_FW_ERR_FORMAT
+                                                                              : MRQP_FW_OK;
       });
   add_message<MitIn, 1>(
       "mit_reply", 32, make_mit,
@@ -601,7 +609,9 @@ void register_messages()
   // ---- wrist force/torque sensor ----
   add_message<FtIn, 2>(
       "ft_classic_pair", 50, make_ft,
-      [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_classic(&kFtClassic, t.node, &t.classic, &f[0], &f[1]); },
+      [](const FtIn& t, mrqp_fw_frame* f) {
+        return mrqp_fw_ft_pack_classic(&kFtClassic, t.node, &t.classic, &f[0], &f[1]);
+      },
       [](const mrqp_fw_frame* f, const FtIn& t) {
         mrqp_fw_ft_sample s;
         const mrqp_fw_err e = mrqp_fw_ft_unpack_classic(&kFtClassic, &f[0], &f[1], t.node, &s);
@@ -609,7 +619,8 @@ void register_messages()
         return e;
       });
   add_message<FtIn, 1>(
-      "ft_fd", 51, make_ft, [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_fd(&kFtFd, t.node, &t.fd, f); },
+      "ft_fd", 51, make_ft,
+      [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_fd(&kFtFd, t.node, &t.fd, f); },
       [](const mrqp_fw_frame* f, const FtIn& t) {
         mrqp_fw_ft_sample s;
         const mrqp_fw_err e = mrqp_fw_ft_unpack_fd(&kFtFd, f, t.node, &s);
@@ -617,7 +628,8 @@ void register_messages()
         return e;
       });
   add_message<FtIn, 1>(
-      "ft_tare", 52, make_ft, [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_tare(t.node, t.tare, f); },
+      "ft_tare", 52, make_ft,
+      [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_tare(t.node, t.tare, f); },
       [](const mrqp_fw_frame* f, const FtIn& t) {
         std::uint8_t cmd;
         const mrqp_fw_err e = mrqp_fw_ft_unpack_tare(f, t.node, &cmd);
@@ -633,11 +645,11 @@ constexpr std::size_t kMitMotors = 20;
 constexpr std::size_t kFtSensors = 2;
 /// Host frames per cycle: sent 7 RPDO1 + 1 SYNC + 20 MIT commands, received 7 TPDO1 + 7 TPDO2 +
 /// 20 MIT replies + 2 x 2 force/torque halves.
-constexpr int kCycleFrames = static_cast<int>(kArmDrives + 1 + kMitMotors + 2 * kArmDrives + kMitMotors + 2 * kFtSensors);
+constexpr int kCycleFrames =
+    static_cast<int>(kArmDrives + 1 + kMitMotors + 2 * kArmDrives + kMitMotors + 2 * kFtSensors);
 
 /// The host codec work of one cycle, no driver logic.
-void bm_cycle_codec(benchmark::State& state)
-{
+void bm_cycle_codec(benchmark::State& state) {
   struct Ring {
     std::array<double, kArmDrives> position;
     std::array<mrqp_fw_mit_cmd, kMitMotors> mit;
@@ -674,8 +686,9 @@ void bm_cycle_codec(benchmark::State& state)
   for (auto _ : state) {
     const Ring& c = ring[i];
     for (std::size_t d = 0; d < kArmDrives; ++d) {
-      failed |= pack_err(mrqp_fw_arm_pack_rpdo1_si(&kArmScale, static_cast<unsigned>(d + 1), MRQP_FW_CW_ENABLE_OPERATION_CMD,
-                                                   c.position[d], 0.0, &out));
+      failed |=
+          pack_err(mrqp_fw_arm_pack_rpdo1_si(&kArmScale, static_cast<unsigned>(d + 1),
+                                             MRQP_FW_CW_ENABLE_OPERATION_CMD, c.position[d], 0.0, &out));
       benchmark::DoNotOptimize(out);
     }
     failed |= pack_err(mrqp_fw_sync_pack(sync_counter, &out));
@@ -705,8 +718,8 @@ void bm_cycle_codec(benchmark::State& state)
     }
     for (std::size_t s = 0; s < kFtSensors; ++s) {
       mrqp_fw_ft_sample smp;
-      failed |= unpack_err(
-          mrqp_fw_ft_unpack_classic(&kFtClassic, &c.ft[s][0], &c.ft[s][1], 0x30u + static_cast<unsigned>(s & 1u), &smp));
+      failed |= unpack_err(mrqp_fw_ft_unpack_classic(&kFtClassic, &c.ft[s][0], &c.ft[s][1],
+                                                     0x30u + static_cast<unsigned>(s & 1u), &smp));
       benchmark::DoNotOptimize(smp);
     }
     i = (i + 1) % kCycles;
@@ -727,22 +740,20 @@ using namespace mrqp::drivers;
 /// drivers decode changing values and the sensors' sequence numbers keep counting).
 class ReplayBus final : public Bus {
  public:
-  explicit ReplayBus(SimNode& node, std::vector<std::uint8_t> ft_nodes) : node_(node), ft_nodes_(std::move(ft_nodes)) {}
+  explicit ReplayBus(SimNode& node, std::vector<std::uint8_t> ft_nodes)
+      : node_(node), ft_nodes_(std::move(ft_nodes)) {}
 
-  void start_recording(TimeNs cycle) noexcept
-  {
+  void start_recording(TimeNs cycle) noexcept {
     recording_ = true;
     count_ = 0;
     recorded_at_ = cycle;
   }
-  void start_replay() noexcept
-  {
+  void start_replay() noexcept {
     recording_ = false;
     replay_ = true;
   }
   /// Prepares the replay of cycle k (>= 1 after the recorded one) at time now.
-  void begin_cycle(TimeNs now, std::uint32_t k) noexcept
-  {
+  void begin_cycle(TimeNs now, std::uint32_t k) noexcept {
     now_ = now;
     k_ = k;
     pos_ = 0;
@@ -750,8 +761,7 @@ class ReplayBus final : public Bus {
   std::size_t recorded() const noexcept { return count_; }
   std::uint64_t sent() const noexcept { return sent_; }
 
-  SendResult send(const mrqp_fw_frame& frame) noexcept override
-  {
+  SendResult send(const mrqp_fw_frame& frame) noexcept override {
     if (!replay_) {
       return node_.send(frame);
     }
@@ -760,8 +770,7 @@ class ReplayBus final : public Bus {
     benchmark::DoNotOptimize(sink_);
     return SendResult::Ok;
   }
-  ReceiveResult receive(RxFrame& out) noexcept override
-  {
+  ReceiveResult receive(RxFrame& out) noexcept override {
     if (!replay_) {
       const ReceiveResult r = node_.receive(out);
       if (recording_ && r == ReceiveResult::Frame && count_ < frames_.size()) {
@@ -782,8 +791,7 @@ class ReplayBus final : public Bus {
   const char* name() const noexcept override { return node_.name(); }
 
  private:
-  void patch(mrqp_fw_frame& f) const noexcept
-  {
+  void patch(mrqp_fw_frame& f) const noexcept {
     const std::uint8_t k = static_cast<std::uint8_t>(k_);
     if (f.id == MRQP_FW_MIT_MASTER_ID) {
       f.data[2] = static_cast<std::uint8_t>(f.data[2] + k);  // MIT reply: position low byte
@@ -821,8 +829,7 @@ class ReplayBus final : public Bus {
 struct Robot {
   static constexpr TimeNs kPeriod = milliseconds(10);
 
-  Robot()
-  {
+  Robot() {
     SimNodeConfig mc;
     mc.name = "master";
     mc.rx_queue = 1024;
@@ -848,7 +855,8 @@ struct Robot {
     FtConfig fc;
     for (std::size_t s = 0; s < kFtSensors; ++s) {
       const std::uint8_t node = static_cast<std::uint8_t>(0x30 + s);
-      sensors.push_back(std::make_unique<drvtest::FakeFtSensor>(*arm_bus.add_node(SimNodeConfig{}), node, false));
+      sensors.push_back(
+          std::make_unique<drvtest::FakeFtSensor>(*arm_bus.add_node(SimNodeConfig{}), node, false));
       sensors.back()->set_wrench({10.0 + static_cast<double>(s), -4.0, 25.0, 0.5, -0.25, 0.125});
       FtSensorConfig sc;
       sc.node = node;
@@ -875,8 +883,8 @@ struct Robot {
     for (std::size_t i = 0; i < kRing; ++i) {
       const double phase = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(kRing);
       position[i] = 0.5 * std::sin(phase);
-      mit_cmd[i] = {static_cast<float>(0.3 * std::sin(phase)), static_cast<float>(0.3 * std::cos(phase)), 20.0f, 0.5f,
-                    static_cast<float>(0.1 * std::cos(phase))};
+      mit_cmd[i] = {static_cast<float>(0.3 * std::sin(phase)), static_cast<float>(0.3 * std::cos(phase)),
+                    20.0f, 0.5f, static_cast<float>(0.1 * std::cos(phase))};
     }
   }
 
@@ -885,8 +893,7 @@ struct Robot {
   /// the arm driver would otherwise take as the answer to it); `sim` advances the simulated buses
   /// first, else the replay buses serve the recorded cycle. Returns the fault flags of the cycle,
   /// and bit 31 if a setpoint was not accepted as it is.
-  std::uint32_t cycle(bool sim) noexcept
-  {
+  std::uint32_t cycle(bool sim) noexcept {
     ++k;
     if (sim) {
       arm_bus.advance_to(t);
@@ -917,8 +924,7 @@ struct Robot {
   }
 
   /// Boots and enables everything over the simulated buses. Empty string on success.
-  std::string boot()
-  {
+  std::string boot() {
     if (!arm || !ft || !mit) {
       return "driver creation failed: " + error;
     }
@@ -926,7 +932,8 @@ struct Robot {
     int n = 0;
     for (; n < 1000 && arm->phase() != ArmPhase::Running; ++n) {
       if (arm->phase() == ArmPhase::Failed) {
-        return "arm boot failed after " + std::to_string(n) + " cycles: " + describe_faults(arm->faults(), "drive");
+        return "arm boot failed after " + std::to_string(n) +
+               " cycles: " + describe_faults(arm->faults(), "drive");
       }
       (void)cycle(true);
     }
@@ -956,8 +963,7 @@ struct Robot {
   }
 
   /// Records one steady-state cycle and switches to replay. Empty string on success.
-  std::string record()
-  {
+  std::string record() {
     arm_proxy->start_recording(t);
     mit_proxy->start_recording(t);
     const std::uint32_t flags = cycle(true);
@@ -968,13 +974,13 @@ struct Robot {
     if (flags != 0u || arm_proxy->recorded() != arm_expected || mit_proxy->recorded() != kMitMotors) {
       return "recorded cycle: flags 0x" + hex(flags) + ", " + std::to_string(arm_proxy->recorded()) +
              " arm-bus frames (expected " + std::to_string(arm_expected) + "), " +
-             std::to_string(mit_proxy->recorded()) + " MIT replies (expected " + std::to_string(kMitMotors) + ")";
+             std::to_string(mit_proxy->recorded()) + " MIT replies (expected " + std::to_string(kMitMotors) +
+             ")";
     }
     return {};
   }
 
-  static std::string hex(std::uint32_t v)
-  {
+  static std::string hex(std::uint32_t v) {
     char b[16];
     std::snprintf(b, sizeof b, "%08X", v);
     return b;
@@ -1002,8 +1008,7 @@ struct Robot {
   std::uint32_t replay_k = 0;
 };
 
-void bm_cycle_drivers(benchmark::State& state, bool sim)
-{
+void bm_cycle_drivers(benchmark::State& state, bool sim) {
   auto robot = std::make_unique<Robot>();
   std::string err = robot->boot();
   if (err.empty() && !sim) {
@@ -1017,8 +1022,8 @@ void bm_cycle_drivers(benchmark::State& state, bool sim)
   for (auto _ : state) {
     flags |= robot->cycle(sim);
   }
-  const bool ok = flags == 0u && robot->arm->all_enabled() && robot->mit->all_on() && robot->ft->sensor(0).fresh &&
-                  robot->ft->sensor(1).fresh;
+  const bool ok = flags == 0u && robot->arm->all_enabled() && robot->mit->all_on() &&
+                  robot->ft->sensor(0).fresh && robot->ft->sensor(1).fresh;
   if (!ok) {
     state.SkipWithError(("faults during the timed cycles: flags 0x" + Robot::hex(flags)).c_str());
     return;
@@ -1028,8 +1033,7 @@ void bm_cycle_drivers(benchmark::State& state, bool sim)
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
     return 2;
@@ -1044,10 +1048,12 @@ int main(int argc, char** argv)
 
   register_messages();
   with_max(benchmark::RegisterBenchmark("BM_cycle/codec", bm_cycle_codec))->Unit(benchmark::kMicrosecond);
-  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_host", [](benchmark::State& s) { bm_cycle_drivers(s, false); }))
-      ->Unit(benchmark::kMicrosecond);
-  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_sim_bus", [](benchmark::State& s) { bm_cycle_drivers(s, true); }))
-      ->Unit(benchmark::kMicrosecond);
+  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_host", [](benchmark::State& s) {
+    bm_cycle_drivers(s, false);
+  }))->Unit(benchmark::kMicrosecond);
+  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_sim_bus", [](benchmark::State& s) {
+    bm_cycle_drivers(s, true);
+  }))->Unit(benchmark::kMicrosecond);
 
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -41,12 +41,11 @@ using mrqp::test::ReferenceModel;
 double maxAbs(const MatrixXd& m) { return m.size() ? m.cwiseAbs().maxCoeff() : 0.0; }
 
 /// Relative agreement of a with b (scaled by max(1, |b|_max)).
-bool close(const MatrixXd& a, const MatrixXd& b, double tol, const std::string& what,
-           const char* model) {
+bool close(const MatrixXd& a, const MatrixXd& b, double tol, const std::string& what, const char* model) {
   const double err = maxAbs(a - b) / std::max(1.0, maxAbs(b));
   if (a.rows() == b.rows() && a.cols() == b.cols() && err <= tol) return true;
-  std::cerr << "bench_model: " << model << ": " << what << " differs from the reference (relative "
-            << err << " > " << tol << ")\n";
+  std::cerr << "bench_model: " << model << ": " << what << " differs from the reference (relative " << err
+            << " > " << tol << ")\n";
   return false;
 }
 
@@ -63,8 +62,7 @@ bool check(const ReferenceModel& ref, const mrqp::tools::State<M>& s) {
   }
   if (ref.fullJointNames().size() != size_t{mrqp::tools::movingJoints<M>()}) {
     std::cerr << "bench_model: " << M::name << ": " << ref.fullJointNames().size()
-              << " moving URDF joints, but nbodies - 1 = " << mrqp::tools::movingJoints<M>()
-              << '\n';
+              << " moving URDF joints, but nbodies - 1 = " << mrqp::tools::movingJoints<M>() << '\n';
     ok = false;
   }
 
@@ -104,8 +102,7 @@ void add(const std::string& name, F&& f) {
 
 template <class M>
 bool registerModel() {
-  auto ref =
-      std::make_shared<const ReferenceModel>(ReferenceModel::fromUrdf(M::urdf, M::floating_base));
+  auto ref = std::make_shared<const ReferenceModel>(ReferenceModel::fromUrdf(M::urdf, M::floating_base));
   auto s = std::make_shared<const mrqp::tools::State<M>>();
   if (!check<M>(*ref, *s)) return false;
   const std::string prefix = std::string(M::name) + "/";

@@ -10,29 +10,30 @@
 #include <cmath>
 #include <random>
 
-#include "model/model_traits.hpp"
 #include "door_model.hpp"
 #include "human_model.hpp"
 #include "jvrc1_model.hpp"
+#include "model/model_traits.hpp"
 #include "panda_model.hpp"
 #include "pendulum_model.hpp"
 #include "romeo_model.hpp"
 
 #if !defined(MRQP_MODELS_URDF_DIR) || !defined(MRQP_TEST_MODELS_DIR)
-#error "MRQP_MODELS_URDF_DIR (control/model/urdf) and MRQP_TEST_MODELS_DIR (tests/data/models) must be defined by the build"
+#error \
+    "MRQP_MODELS_URDF_DIR (control/model/urdf) and MRQP_TEST_MODELS_DIR (tests/data/models) must be defined by the build"
 #endif
 
 namespace mrqp::tools {
 
 /// NS: generated namespace; LABEL: short model name; DIR, FILE: folder and name of the URDF file.
-#define MRQP_TOOLS_MODEL(NS, LABEL, DIR, FILE)                                                  \
-  MRQP_MODEL_TRAITS(NS);                                                                        \
-  struct NS##_face : NS##_model {                                                               \
-    static constexpr const char* name = LABEL;                                                  \
-    static constexpr const char* urdf = DIR "/" FILE;                                           \
-    static void jacobianWorld(const Data& d, int f, Jacobian& J) {                              \
-      jacobian(d, f, Eigen::Vector3d::Zero(), true, J);                                         \
-    }                                                                                           \
+#define MRQP_TOOLS_MODEL(NS, LABEL, DIR, FILE)                     \
+  MRQP_MODEL_TRAITS(NS);                                           \
+  struct NS##_face : NS##_model {                                  \
+    static constexpr const char* name = LABEL;                     \
+    static constexpr const char* urdf = DIR "/" FILE;              \
+    static void jacobianWorld(const Data& d, int f, Jacobian& J) { \
+      jacobian(d, f, Eigen::Vector3d::Zero(), true, J);            \
+    }                                                              \
   }
 
 MRQP_TOOLS_MODEL(door_model, "door", MRQP_MODELS_URDF_DIR, "door.urdf");

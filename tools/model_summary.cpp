@@ -48,7 +48,7 @@ volatile double g_sink = 0.0;
 /// Median over `batches` batches of the mean time per call of f, in microseconds.
 template <class F>
 double medianMicros(F&& f, const Options& opt) {
-  constexpr double kWarmup = 0.020;      // s
+  constexpr double kWarmup = 0.020;       // s
   constexpr double kBatchTarget = 0.001;  // s
   int n = 0;
   const auto w0 = Clock::now();
@@ -134,11 +134,19 @@ Row measure(const Options& opt) {
 }
 
 const std::vector<std::string>& headers() {
-  static const std::vector<std::string> h = {
-      "model",          "URDF links (frames)", "bodies (merged)", "moving joints (indep + mimic)",
-      "nq",             "nv",                  "floating base",   "total mass [kg]",
-      "FK [us]",        "FK + all frame Jacobians [us]", "CRBA [us]", "RNEA [us]",
-      "regressor [us]"};
+  static const std::vector<std::string> h = {"model",
+                                             "URDF links (frames)",
+                                             "bodies (merged)",
+                                             "moving joints (indep + mimic)",
+                                             "nq",
+                                             "nv",
+                                             "floating base",
+                                             "total mass [kg]",
+                                             "FK [us]",
+                                             "FK + all frame Jacobians [us]",
+                                             "CRBA [us]",
+                                             "RNEA [us]",
+                                             "regressor [us]"};
   return h;
 }
 
@@ -158,8 +166,8 @@ std::string fmtTime(double us) {
 
 std::vector<std::string> cells(const Row& r, bool csv) {
   const std::string moving = csv ? std::to_string(r.moving)
-                                 : std::to_string(r.moving) + " (" + std::to_string(r.independent) +
-                                       " + " + std::to_string(r.moving - r.independent) + ")";
+                                 : std::to_string(r.moving) + " (" + std::to_string(r.independent) + " + " +
+                                       std::to_string(r.moving - r.independent) + ")";
   return {r.model,
           std::to_string(r.links),
           std::to_string(r.bodies),
@@ -196,11 +204,10 @@ bool writeCsv(const std::vector<Row>& rows, const std::string& path) {
   out << "model,urdf_links,bodies,moving_joints,independent_joints,mimic_joints,nq,nv,"
          "floating_base,total_mass_kg,fk_us,fk_all_jacobians_us,crba_us,rnea_us,regressor_us\n";
   for (const auto& r : rows) {
-    out << r.model << ',' << r.links << ',' << r.bodies << ',' << r.moving << ',' << r.independent
-        << ',' << (r.moving - r.independent) << ',' << r.nq << ',' << r.nv << ','
-        << (r.floating ? "yes" : "no") << ',' << fmt(r.mass, 6) << ',' << fmt(r.fk, 4) << ','
-        << fmt(r.jac, 4) << ',' << fmt(r.crba, 4) << ',' << fmt(r.rnea, 4) << ','
-        << fmt(r.regressor, 4) << '\n';
+    out << r.model << ',' << r.links << ',' << r.bodies << ',' << r.moving << ',' << r.independent << ','
+        << (r.moving - r.independent) << ',' << r.nq << ',' << r.nv << ',' << (r.floating ? "yes" : "no")
+        << ',' << fmt(r.mass, 6) << ',' << fmt(r.fk, 4) << ',' << fmt(r.jac, 4) << ',' << fmt(r.crba, 4)
+        << ',' << fmt(r.rnea, 4) << ',' << fmt(r.regressor, 4) << '\n';
   }
   return static_cast<bool>(out);
 }
@@ -237,14 +244,12 @@ int main(int argc, char** argv) {
       opt.csv = argv[++i];
     } else if (arg == "--reps" && has_value) {
       if (!parseInt(argv[++i], opt.max_reps)) {
-        std::cerr << "mrqp-model-summary: --reps needs a positive integer, got '" << argv[i]
-                  << "'\n";
+        std::cerr << "mrqp-model-summary: --reps needs a positive integer, got '" << argv[i] << "'\n";
         return 2;
       }
     } else if (arg == "--batches" && has_value) {
       if (!parseInt(argv[++i], opt.batches)) {
-        std::cerr << "mrqp-model-summary: --batches needs a positive integer, got '" << argv[i]
-                  << "'\n";
+        std::cerr << "mrqp-model-summary: --batches needs a positive integer, got '" << argv[i] << "'\n";
         return 2;
       }
     } else {
@@ -260,8 +265,8 @@ int main(int argc, char** argv) {
     using M = decltype(face);
     ++k;
     const auto t0 = Clock::now();
-    std::cerr << "mrqp-model-summary: [" << k << '/' << mrqp::tools::kModelCount << "] " << M::name
-              << " (nv " << M::nv << ", " << M::nframes << " frames) ..." << std::flush;
+    std::cerr << "mrqp-model-summary: [" << k << '/' << mrqp::tools::kModelCount << "] " << M::name << " (nv "
+              << M::nv << ", " << M::nframes << " frames) ..." << std::flush;
     rows.push_back(measure<M>(opt));
     std::cerr << " done in " << fmt(seconds(Clock::now() - t0), 2) << " s\n";
   });

@@ -97,7 +97,8 @@ int ContactEstimator::gather(const Target& t, std::array<int, kMaxLinks>& links,
     if (!p_.contactActive(c) || !frozen_[static_cast<std::size_t>(c)].recorded) continue;
     const problem::ContactDesc& d = p_.contact(c);
     if (d.entity == t.entity) {
-      if (d.other_entity < 0 || known[static_cast<std::size_t>(d.other_entity)]) links[static_cast<std::size_t>(n++)] = c;
+      if (d.other_entity < 0 || known[static_cast<std::size_t>(d.other_entity)])
+        links[static_cast<std::size_t>(n++)] = c;
     } else if (d.other_entity == t.entity && known[static_cast<std::size_t>(d.entity)]) {
       links[static_cast<std::size_t>(n++)] = c;
     }
@@ -198,8 +199,8 @@ void ContactEstimator::applyImu(int entity) noexcept {
   e.update();
   auto q = e.q();
   const Eigen::Quaterniond qb(q(3), q(4), q(5), q(6));
-  const Eigen::Matrix3d R_base_imu = qb.toRotationMatrix().transpose() *
-                                     e.framePose(imu_frame_[static_cast<std::size_t>(entity)]).R;
+  const Eigen::Matrix3d R_base_imu =
+      qb.toRotationMatrix().transpose() * e.framePose(imu_frame_[static_cast<std::size_t>(entity)]).R;
   const Eigen::Quaterniond qi(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
   Eigen::Quaterniond qn(qi.normalized().toRotationMatrix() * R_base_imu.transpose());
   qn.normalize();
@@ -229,13 +230,16 @@ void ContactEstimator::estimate() noexcept {
       if (!p_.contactActive(c) || f.recorded) continue;
       const problem::ContactDesc& d = p_.contact(c);
       const problem::Pose surface = p_.entity(d.entity).framePose(d.frame);
-      f.rel = d.other_entity < 0 ? surface : compose(inverse(p_.entity(d.other_entity).framePose(d.other_frame)), surface);
+      f.rel = d.other_entity < 0
+                  ? surface
+                  : compose(inverse(p_.entity(d.other_entity).framePose(d.other_frame)), surface);
       f.recorded = true;
     }
   }
   // Measured robots are known (their joints); their bases and everything else follow.
   for (int e = 0; e < p_.entityCount(); ++e) {
-    known_[static_cast<std::size_t>(e)] = measured_[static_cast<std::size_t>(e)] && !p_.entity(e).floatingBase() ? 1 : 0;
+    known_[static_cast<std::size_t>(e)] =
+        measured_[static_cast<std::size_t>(e)] && !p_.entity(e).floatingBase() ? 1 : 0;
     residual_[static_cast<std::size_t>(e)] = -1.0;
   }
   for (Target& t : targets_) {
@@ -247,7 +251,8 @@ void ContactEstimator::estimate() noexcept {
         known_[static_cast<std::size_t>(e)] = 2;  // updated
       }
     }
-    if (imu_frame_[static_cast<std::size_t>(t.entity)] >= 0 && imu_fresh_[static_cast<std::size_t>(t.entity)]) {
+    if (imu_frame_[static_cast<std::size_t>(t.entity)] >= 0 &&
+        imu_fresh_[static_cast<std::size_t>(t.entity)]) {
       applyImu(t.entity);
       imu_fresh_[static_cast<std::size_t>(t.entity)] = 0;
     }

@@ -52,15 +52,16 @@ class ContactEstimator {
     int entity = -1;
     int first = 0;  ///< first estimated velocity coordinate
     int count = 0;
-    Eigen::MatrixXd A;      ///< stacked rows (6 kMaxLinks × count)
+    Eigen::MatrixXd A;  ///< stacked rows (6 kMaxLinks × count)
     Eigen::VectorXd b;
-    Eigen::MatrixXd N;      ///< AᵀA (count × count)
+    Eigen::MatrixXd N;  ///< AᵀA (count × count)
     Eigen::VectorXd x;
     Eigen::LDLT<Eigen::MatrixXd> ldlt;
   };
 
   problem::Pose targetPose(int contact, bool surface_side) const noexcept;
-  int gather(const Target& t, std::array<int, kMaxLinks>& links, const std::vector<std::uint8_t>& known) const noexcept;
+  int gather(const Target& t, std::array<int, kMaxLinks>& links,
+             const std::vector<std::uint8_t>& known) const noexcept;
   void fitPose(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void applyIncrement(Target& t) noexcept;
@@ -72,11 +73,11 @@ class ContactEstimator {
   std::vector<drivers::ImuFeedback> imu_;
   std::vector<std::uint8_t> imu_fresh_;
   int iterations_;
-  std::vector<Frozen> frozen_;     // per contact slot
-  std::vector<Target> targets_;    // in estimation order
+  std::vector<Frozen> frozen_;   // per contact slot
+  std::vector<Target> targets_;  // in estimation order
   std::vector<std::uint8_t> known_;
   std::vector<double> residual_;
-  Eigen::MatrixXd J_, Jo_;         // 6 × max nv
+  Eigen::MatrixXd J_, Jo_;  // 6 × max nv
   Eigen::VectorXd v_save_, zero_;
 };
 

@@ -15,21 +15,26 @@ namespace fault = drivers::fault;
 
 const char* stopReasonStr(StopReason reason) noexcept {
   switch (reason) {
-    case StopReason::None: return "none";
-    case StopReason::QpNotOptimal: return "qp not optimal";
-    case StopReason::DriverFault: return "driver fault";
-    case StopReason::StaleSensor: return "stale sensor";
-    case StopReason::NonFinite: return "non-finite value";
+    case StopReason::None:
+      return "none";
+    case StopReason::QpNotOptimal:
+      return "qp not optimal";
+    case StopReason::DriverFault:
+      return "driver fault";
+    case StopReason::StaleSensor:
+      return "stale sensor";
+    case StopReason::NonFinite:
+      return "non-finite value";
   }
   return "unknown";
 }
 
 namespace {
 
-constexpr std::uint32_t kDefaultFatal = fault::kHeartbeatLost | fault::kFeedbackMissing | fault::kEmcy |
-                                        fault::kDeviceFault | fault::kOutOfRange | fault::kSetpointRefused |
-                                        fault::kCorruptFrame | fault::kBusOff | fault::kStateMismatch |
-                                        fault::kTimeout | fault::kBootFailed | fault::kTornPair | fault::kRxOverflow;
+constexpr std::uint32_t kDefaultFatal =
+    fault::kHeartbeatLost | fault::kFeedbackMissing | fault::kEmcy | fault::kDeviceFault |
+    fault::kOutOfRange | fault::kSetpointRefused | fault::kCorruptFrame | fault::kBusOff |
+    fault::kStateMismatch | fault::kTimeout | fault::kBootFailed | fault::kTornPair | fault::kRxOverflow;
 
 }  // namespace
 
@@ -100,14 +105,17 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
       }
     }
     if (!rr.impedance.empty()) {
-      throw std::runtime_error("controller: " + rr.name + ": MIT motors and FD boards are not run by this build of the loop");
+      throw std::runtime_error("controller: " + rr.name +
+                               ": MIT motors and FD boards are not run by this build of the loop");
     }
     // A bus without drives needs a SYNC of its own from the sensor drivers.
     auto hasDrives = [&](int bus) {
-      return std::any_of(rr.drives.begin(), rr.drives.end(), [bus](const ResolvedDrive& d) { return d.bus == bus; });
+      return std::any_of(rr.drives.begin(), rr.drives.end(),
+                         [bus](const ResolvedDrive& d) { return d.bus == bus; });
     };
     auto routerIndex = [&](int bus) {
-      return static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), bus) - bus_of_router.begin());
+      return static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), bus) -
+                                      bus_of_router.begin());
     };
     if (!rr.ft_sensors.empty()) {
       drivers::FtConfig fc;
@@ -123,7 +131,8 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
       std::unique_ptr<drivers::FtSensorDriver> ft = drivers::FtSensorDriver::create(r.routers, fc, &err);
       if (!ft) throw std::runtime_error("controller: " + rr.name + ": F/T sensors: " + err);
       for (std::size_t i = 0; i < rr.ft_sensors.size(); ++i) {
-        r.ft_sensors.push_back(SensorIo{ft.get(), i, rr.ft_sensors[i].frame, rr.name + "." + rr.ft_sensors[i].frame_name, 0});
+        r.ft_sensors.push_back(
+            SensorIo{ft.get(), i, rr.ft_sensors[i].frame, rr.name + "." + rr.ft_sensors[i].frame_name, 0});
       }
       r.devices.push_back(std::move(ft));
     }
@@ -230,7 +239,8 @@ bool Controller::bootCycle(drivers::TimeNs now) noexcept {
   return all_ready;
 }
 
-void Controller::trip(StopReason reason, std::uint32_t flags, const std::string* device, drivers::TimeNs now) noexcept {
+void Controller::trip(StopReason reason, std::uint32_t flags, const std::string* device,
+                      drivers::TimeNs now) noexcept {
   if (stop_ != StopReason::None) return;
   stop_ = reason;
   stop_flags_ = flags;
@@ -526,7 +536,8 @@ void Controller::logRow(drivers::TimeNs now) noexcept {
   double* row = log_->beginRow();
   if (row == nullptr) return;
   row[col_t_] = static_cast<double>(now - start_) * 1e-9;
-  for (int p = 0; p < kPhaseCount; ++p) row[col_phase_ + p] = static_cast<double>(timing_.phase_ns[static_cast<std::size_t>(p)]) * 1e-3;
+  for (int p = 0; p < kPhaseCount; ++p)
+    row[col_phase_ + p] = static_cast<double>(timing_.phase_ns[static_cast<std::size_t>(p)]) * 1e-3;
   row[col_total_] = static_cast<double>(timing_.total_ns) * 1e-3;
   row[col_status_] = static_cast<double>(static_cast<int>(status_));
   row[col_iter_] = static_cast<double>(problem_.solver().info().iterations);

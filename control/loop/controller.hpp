@@ -165,7 +165,8 @@ class Controller {
 
   // log
   LogRing* log_ = nullptr;
-  int col_t_ = -1, col_phase_ = -1, col_total_ = -1, col_status_ = -1, col_iter_ = -1, col_safe_ = -1, col_flags_ = -1;
+  int col_t_ = -1, col_phase_ = -1, col_total_ = -1, col_status_ = -1, col_iter_ = -1, col_safe_ = -1,
+      col_flags_ = -1;
   int col_tasks_ = -1, col_contacts_ = -1, col_joints_ = -1, col_buses_ = -1, col_ft_ = -1;
   std::vector<int> task_ids_, contact_ids_;
   std::vector<std::uint64_t> bus_frames_prev_;

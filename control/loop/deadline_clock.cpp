@@ -35,8 +35,7 @@ drivers::TimeNs DeadlineClock::wait() noexcept {
     return now;
   }
   const timespec ts = toTimespec(next_);
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) != 0) {
-  }
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) != 0) {}
   now = drivers::monotonic_now();
   if (now - next_ > worst_late_) worst_late_ = now - next_;
   return next_;

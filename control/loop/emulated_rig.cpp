@@ -26,7 +26,8 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
     for (const ResolvedDrive& d : r.drives) {
       drivers::SimNodeConfig nc;
       nc.name = "cia402";
-      nc.fd = hw.buses[static_cast<std::size_t>(d.bus)].decl.data_bitrate != 0;  // an FD-capable controller on an FD bus
+      nc.fd = hw.buses[static_cast<std::size_t>(d.bus)].decl.data_bitrate !=
+              0;  // an FD-capable controller on an FD bus
       drivers::SimNode* node = buses_[static_cast<std::size_t>(d.bus)]->add_node(nc);
       if (node == nullptr) {
         throw std::runtime_error("emulated rig: too many nodes on one bus");
@@ -42,7 +43,8 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       o.rated_torque = d.rated_torque;
       const double limit = e.effortLimit()(d.joint);
       o.torque_limit = limit > 0.0 ? limit : 1e9;
-      drives_.push_back(DriveSlot{r.name + "." + d.joint_name, std::make_unique<PlantCia402Drive>(*node, plant, o)});
+      drives_.push_back(
+          DriveSlot{r.name + "." + d.joint_name, std::make_unique<PlantCia402Drive>(*node, plant, o)});
     }
     auto frameOf = [&](const ResolvedSensor& s) {
       const int f = plant.frameHandle(r.name, s.frame_name);
@@ -58,8 +60,9 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       nc.fd = hw.buses[static_cast<std::size_t>(s.bus)].decl.data_bitrate != 0;
       drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
       if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
-      ft_.emplace_back(r.name + "." + s.frame_name,
-                       std::make_unique<PlantFtSensor>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
+      ft_.emplace_back(
+          r.name + "." + s.frame_name,
+          std::make_unique<PlantFtSensor>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
     }
     for (const ResolvedSensor& s : r.imus) {
       drivers::SimNodeConfig nc;
@@ -67,8 +70,9 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       nc.fd = true;
       drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
       if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
-      imus_.emplace_back(r.name + "." + s.frame_name,
-                         std::make_unique<PlantImu>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
+      imus_.emplace_back(
+          r.name + "." + s.frame_name,
+          std::make_unique<PlantImu>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
     }
   }
 }

@@ -10,24 +10,27 @@ namespace {
 double faultTime(const std::string& spec, const std::string& v) {
   char* end = nullptr;
   const double d = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0') throw std::invalid_argument("--fault " + spec + ": expected a time in s, got '" + v + "'");
+  if (v.empty() || *end != '\0')
+    throw std::invalid_argument("--fault " + spec + ": expected a time in s, got '" + v + "'");
   return d;
 }
 }  // namespace
 
 FaultRequest parseFaultRequest(const std::string& spec) {
-  static const char* kinds[] = {"heartbeat-loss", "bus-off", "frame-loss", "corrupt-frames",
+  static const char* kinds[] = {"heartbeat-loss", "bus-off",  "frame-loss", "corrupt-frames",
                                 "nan-feedback",   "stale-ft", "infeasible"};
   const std::size_t at = spec.find('@');
-  if (at == std::string::npos) throw std::invalid_argument("--fault " + spec + ": expected KIND@SECONDS[:DEVICE]");
+  if (at == std::string::npos)
+    throw std::invalid_argument("--fault " + spec + ": expected KIND@SECONDS[:DEVICE]");
   FaultRequest f;
   f.kind = spec.substr(0, at);
   bool known = false;
   for (const char* k : kinds) known = known || f.kind == k;
   if (!known) {
-    throw std::invalid_argument("--fault " + spec + ": unknown kind '" + f.kind +
-                                "' (heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, "
-                                "infeasible)");
+    throw std::invalid_argument(
+        "--fault " + spec + ": unknown kind '" + f.kind +
+        "' (heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, "
+        "infeasible)");
   }
   const std::string rest = spec.substr(at + 1);
   const std::size_t colon = rest.find(':');
@@ -40,7 +43,6 @@ FaultRequest parseFaultRequest(const std::string& spec) {
   return f;
 }
 
-
 FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, EmulatedRig* rig,
                              Controller& controller, const ResolvedHardware& hw)
     : rig_(rig), controller_(controller) {
@@ -49,14 +51,18 @@ FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, Emulated
     r.kind = q.kind;
     r.at_s = q.at_s;
     Target t;
-    const std::string spec = "--fault " + q.kind + "@" + std::to_string(q.at_s) + (q.device.empty() ? "" : ":" + q.device);
+    const std::string spec =
+        "--fault " + q.kind + "@" + std::to_string(q.at_s) + (q.device.empty() ? "" : ":" + q.device);
     if (q.kind == "stale-ft") {
       if (rig == nullptr) {
         throw std::invalid_argument(spec + ": hardware faults are injected in the emulated rig (--bus sim)");
       }
       t.ft = rig->ftSensor(q.device);
       if (t.ft == nullptr) {
-        throw std::invalid_argument(spec + ": no F/T sensor " + (q.device.empty() ? "in the hardware section" : "'" + q.device + "' (an F/T sensor is ENTITY.FRAME)"));
+        throw std::invalid_argument(spec + ": no F/T sensor " +
+                                    (q.device.empty()
+                                         ? "in the hardware section"
+                                         : "'" + q.device + "' (an F/T sensor is ENTITY.FRAME)"));
       }
       r.device = rig->ftSensorName(t.ft);
     } else if (q.kind == "infeasible") {
@@ -72,7 +78,9 @@ FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, Emulated
           }
         }
       }
-      if (t.robot < 0) throw std::invalid_argument(spec + ": no driven joint " + (q.device.empty() ? "" : "'" + q.device + "'"));
+      if (t.robot < 0)
+        throw std::invalid_argument(spec + ": no driven joint " +
+                                    (q.device.empty() ? "" : "'" + q.device + "'"));
     } else {
       if (rig == nullptr) {
         throw std::invalid_argument(spec + ": hardware faults are injected in the emulated rig (--bus sim)");
@@ -85,7 +93,8 @@ FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, Emulated
             break;
           }
         }
-        if (t.bus < 0) throw std::invalid_argument(spec + ": no bus '" + q.device + "' in the hardware section");
+        if (t.bus < 0)
+          throw std::invalid_argument(spec + ": no bus '" + q.device + "' in the hardware section");
       } else {
         t.drive = q.device.empty() ? rig->firstDrive() : rig->drive(q.device);
         if (t.drive == nullptr) {

@@ -15,7 +15,8 @@
 namespace mrqp::loop {
 
 struct FaultRequest {
-  std::string kind;    ///< heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, infeasible
+  std::string
+      kind;  ///< heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, infeasible
   double at_s = 0.0;   ///< s since the first cycle
   std::string device;  ///< empty: the first device the fault applies to
 };

@@ -21,7 +21,8 @@ std::string robotField(std::size_t r, const std::string& rest) {
   return "hardware.robots[" + std::to_string(r) + "]" + (rest.empty() ? "" : "." + rest);
 }
 
-int busIndex(const HardwareSpec& spec, const std::string& name, const scene::Source& at, const std::string& field) {
+int busIndex(const HardwareSpec& spec, const std::string& name, const scene::Source& at,
+             const std::string& field) {
   for (std::size_t i = 0; i < spec.buses.size(); ++i) {
     if (spec.buses[i].name == name) {
       return static_cast<int>(i);
@@ -32,7 +33,8 @@ int busIndex(const HardwareSpec& spec, const std::string& name, const scene::Sou
 
 }  // namespace
 
-ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem, double dt) {
+ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem,
+                                 double dt) {
   ResolvedHardware out;
   out.heartbeat_timeout_s = spec.heartbeat_timeout_s;
   out.feedback_missing_cycles = spec.feedback_missing_cycles;
@@ -55,7 +57,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     ResolvedBus& rb = out.buses[static_cast<std::size_t>(bus)];
     if (rb.robot >= 0 && rb.robot != robot) {
       fail(at, field,
-           "bus '" + rb.decl.name + "' already carries robot '" + out.robots[static_cast<std::size_t>(rb.robot)].name +
+           "bus '" + rb.decl.name + "' already carries robot '" +
+               out.robots[static_cast<std::size_t>(rb.robot)].name +
                "' (one robot per bus: its drives share one SYNC)");
     }
     rb.robot = robot;
@@ -87,8 +90,9 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
         fail(at, field, "joint '" + name + "' of '" + rh.entity + "' is not actuated in the scene");
       }
       if (assigned[static_cast<std::size_t>(k)] >= 0) {
-        fail(at, field, "joint '" + name + "' already has a drive (line " +
-                            std::to_string(assigned[static_cast<std::size_t>(k)]) + ")");
+        fail(at, field,
+             "joint '" + name + "' already has a drive (line " +
+                 std::to_string(assigned[static_cast<std::size_t>(k)]) + ")");
       }
       assigned[static_cast<std::size_t>(k)] = at.line;
       return k;
@@ -127,7 +131,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
         rob.impedance.push_back(d);
       }
     }
-    auto sensors = [&](const std::vector<SensorDecl>& decls, const char* key, std::vector<ResolvedSensor>& into) {
+    auto sensors = [&](const std::vector<SensorDecl>& decls, const char* key,
+                       std::vector<ResolvedSensor>& into) {
       for (std::size_t i = 0; i < decls.size(); ++i) {
         const SensorDecl& s = decls[i];
         const std::string field = robotField(r, std::string(key) + "[" + std::to_string(i) + "]");
@@ -147,7 +152,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     sensors(rh.ft_sensors, "ft_sensors", rob.ft_sensors);
     sensors(rh.imus, "imus", rob.imus);
     if (!rh.imus.empty() && !e.floatingBase()) {
-      fail(rh.imus.front().source, robotField(r, "imus"), "'" + rh.entity + "' has no floating base to estimate");
+      fail(rh.imus.front().source, robotField(r, "imus"),
+           "'" + rh.entity + "' has no floating base to estimate");
     }
     for (std::size_t i = 0; i < rob.imus.size(); ++i) {
       if (spec.buses[static_cast<std::size_t>(rob.imus[i].bus)].data_bitrate == 0) {
@@ -168,7 +174,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
   for (std::size_t b = 0; b < out.buses.size(); ++b) {
     ResolvedBus& rb = out.buses[b];
     if (rb.robot < 0) {
-      fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]", "bus '" + rb.decl.name + "' carries nothing");
+      fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]",
+           "bus '" + rb.decl.name + "' carries nothing");
     }
     const ResolvedRobot& rob = out.robots[static_cast<std::size_t>(rb.robot)];
     drivers::BusSpec bs;
@@ -180,7 +187,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     drivers::BusBudget budget(bs);
     std::uint32_t drives = 0, mit = 0, fd = 0, ft = 0, imu = 0;
     for (const ResolvedDrive& d : rob.drives) drives += d.bus == static_cast<int>(b) ? 1u : 0u;
-    for (const ResolvedDrive& d : rob.impedance) (rb.decl.data_bitrate != 0 ? fd : mit) += d.bus == static_cast<int>(b) ? 1u : 0u;
+    for (const ResolvedDrive& d : rob.impedance)
+      (rb.decl.data_bitrate != 0 ? fd : mit) += d.bus == static_cast<int>(b) ? 1u : 0u;
     for (const ResolvedSensor& s : rob.ft_sensors) ft += s.bus == static_cast<int>(b) ? 1u : 0u;
     for (const ResolvedSensor& s : rob.imus) imu += s.bus == static_cast<int>(b) ? 1u : 0u;
     if (drives > 0 || ft > 0 || imu > 0) budget.add_sync();
@@ -191,7 +199,10 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     if (mit > 0) budget.add_mit_motors(mit);
     if (fd > 0) budget.add_hand_board(fd);
     if (ft > 0) {
-      if (rb.decl.data_bitrate != 0) budget.add_ft_fd(ft); else budget.add_ft_classic(ft);
+      if (rb.decl.data_bitrate != 0)
+        budget.add_ft_fd(ft);
+      else
+        budget.add_ft_classic(ft);
     }
     if (imu > 0) budget.add_imu_fd(imu);
     std::string message;

@@ -15,10 +15,10 @@
 namespace mrqp::loop {
 
 struct ResolvedDrive {
-  int joint = -1;        ///< velocity index in the entity
-  int q_index = -1;      ///< position index in the entity
+  int joint = -1;    ///< velocity index in the entity
+  int q_index = -1;  ///< position index in the entity
   std::string joint_name;
-  int bus = -1;          ///< index into ResolvedHardware::buses
+  int bus = -1;  ///< index into ResolvedHardware::buses
   int node = 1;
   DriveMode mode = DriveMode::Csp;
   double rated_torque = 100.0;
@@ -37,18 +37,18 @@ struct ResolvedRobot {
   int divisor = 1;
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
-  std::vector<ResolvedDrive> drives;      ///< CiA 402, in the order of the file
-  std::vector<ResolvedDrive> impedance;   ///< MIT / FD joints (declared)
+  std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
+  std::vector<ResolvedDrive> impedance;  ///< MIT / FD joints (declared)
   std::vector<ResolvedSensor> ft_sensors;
   std::vector<ResolvedSensor> imus;
 };
 
 struct ResolvedBus {
   BusDecl decl;
-  int robot = -1;        ///< index into robots
+  int robot = -1;  ///< index into robots
   double cycle_hz = 0.0;
   double utilisation_worst = 0.0;
-  std::string report;    ///< the budget's start-up report
+  std::string report;  ///< the budget's start-up report
 };
 
 struct ResolvedHardware {
@@ -59,6 +59,7 @@ struct ResolvedHardware {
 };
 
 /// Resolves `spec` against the entities of `problem` for a loop period `dt` (s).
-ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem, double dt);
+ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem,
+                                 double dt);
 
 }  // namespace mrqp::loop

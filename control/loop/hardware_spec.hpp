@@ -15,8 +15,8 @@ namespace mrqp::loop {
 
 struct BusDecl {
   std::string name;
-  std::uint32_t bitrate = 1000000;   ///< nominal (arbitration) rate, bit/s
-  std::uint32_t data_bitrate = 0;    ///< > 0: a CAN FD bus with this data-phase rate
+  std::uint32_t bitrate = 1000000;  ///< nominal (arbitration) rate, bit/s
+  std::uint32_t data_bitrate = 0;   ///< > 0: a CAN FD bus with this data-phase rate
   scene::Source source;
 };
 
@@ -27,14 +27,14 @@ struct Cia402Group {
   std::string bus;
   DriveMode mode = DriveMode::Csp;
   int first_node = 1;
-  double rated_torque = 100.0;       ///< N·m per 1000 ‰ on the wire
+  double rated_torque = 100.0;  ///< N·m per 1000 ‰ on the wire
   std::vector<std::string> joints;
   scene::Source source;
 };
 
 /// MIT-mode motors or FD hand-board joints (declared; see docs/loop.md for what this build runs).
 struct ImpedanceGroup {
-  std::string kind;                  ///< "mit" or "fd"
+  std::string kind;  ///< "mit" or "fd"
   std::string bus;
   int first_id = 1;
   std::vector<std::string> joints;
@@ -53,9 +53,9 @@ enum class SafeStop : std::uint8_t { Hold = 0, QuickStop };
 
 struct RobotHardware {
   std::string entity;
-  int divisor = 1;                   ///< the robot's cycle = the loop's period × divisor
+  int divisor = 1;  ///< the robot's cycle = the loop's period × divisor
   SafeStop safe_stop = SafeStop::Hold;
-  double hold_damping = 1.0;         ///< 1/s: hold decays the commanded velocity by this rate
+  double hold_damping = 1.0;  ///< 1/s: hold decays the commanded velocity by this rate
   std::vector<Cia402Group> cia402;
   std::vector<ImpedanceGroup> impedance;
   std::vector<SensorDecl> ft_sensors;
@@ -64,9 +64,9 @@ struct RobotHardware {
 };
 
 struct HardwareSpec {
-  bool present = false;              ///< the scene has a hardware section
-  double heartbeat_timeout_s = 0.25; ///< consumer time of the drives' heartbeats
-  int feedback_missing_cycles = 3;   ///< robot cycles without feedback → fault
+  bool present = false;               ///< the scene has a hardware section
+  double heartbeat_timeout_s = 0.25;  ///< consumer time of the drives' heartbeats
+  int feedback_missing_cycles = 3;    ///< robot cycles without feedback → fault
   std::vector<BusDecl> buses;
   std::vector<RobotHardware> robots;
   scene::Source source;

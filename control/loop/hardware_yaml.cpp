@@ -20,7 +20,8 @@ std::uint32_t bitRate(const Map& m, const std::string& key, std::uint32_t fallba
   }
   const int v = m.reader().integer(*n, m.at(key), allow_zero ? 0 : 10000, 20000000);
   if (v != 0 && v < 10000) {
-    m.reader().fail(*n, m.at(key), "expected 0 or a bit rate in [10000, 20000000], got " + scene::describe(*n));
+    m.reader().fail(*n, m.at(key),
+                    "expected 0 or a bit rate in [10000, 20000000], got " + scene::describe(*n));
   }
   return static_cast<std::uint32_t>(v);
 }
@@ -32,7 +33,8 @@ BusDecl readBus(const Reader& r, const YAML::Node& n, const std::string& path) {
   b.bitrate = bitRate(m, "bitrate", 1000000, false);
   b.data_bitrate = bitRate(m, "data_bitrate", 0, true);
   if (b.data_bitrate != 0 && b.data_bitrate < b.bitrate) {
-    r.fail(*m.find("data_bitrate"), m.at("data_bitrate"), "the data-phase rate must be at least the nominal rate");
+    r.fail(*m.find("data_bitrate"), m.at("data_bitrate"),
+           "the data-phase rate must be at least the nominal rate");
   }
   b.source = m.source();
   return b;
@@ -72,7 +74,8 @@ Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& 
   return g;
 }
 
-ImpedanceGroup readImpedance(const Reader& r, const YAML::Node& n, const std::string& path, const char* kind) {
+ImpedanceGroup readImpedance(const Reader& r, const YAML::Node& n, const std::string& path,
+                             const char* kind) {
   const Map m(r, n, path, {"bus", "first_id", "joints"});
   ImpedanceGroup g;
   g.kind = kind;
@@ -94,8 +97,9 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 }
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(r, n, path,
-              {"entity", "divisor", "safe_stop", "hold_damping", "cia402", "mit", "fd", "ft_sensors", "imus"});
+  const Map m(
+      r, n, path,
+      {"entity", "divisor", "safe_stop", "hold_damping", "cia402", "mit", "fd", "ft_sensors", "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);
@@ -118,10 +122,16 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
       }
     }
   };
-  each("cia402", [&](const YAML::Node& x, const std::string& p) { rh.cia402.push_back(readCia402(r, x, p)); });
-  each("mit", [&](const YAML::Node& x, const std::string& p) { rh.impedance.push_back(readImpedance(r, x, p, "mit")); });
-  each("fd", [&](const YAML::Node& x, const std::string& p) { rh.impedance.push_back(readImpedance(r, x, p, "fd")); });
-  each("ft_sensors", [&](const YAML::Node& x, const std::string& p) { rh.ft_sensors.push_back(readSensor(r, x, p)); });
+  each("cia402",
+       [&](const YAML::Node& x, const std::string& p) { rh.cia402.push_back(readCia402(r, x, p)); });
+  each("mit", [&](const YAML::Node& x, const std::string& p) {
+    rh.impedance.push_back(readImpedance(r, x, p, "mit"));
+  });
+  each("fd", [&](const YAML::Node& x, const std::string& p) {
+    rh.impedance.push_back(readImpedance(r, x, p, "fd"));
+  });
+  each("ft_sensors",
+       [&](const YAML::Node& x, const std::string& p) { rh.ft_sensors.push_back(readSensor(r, x, p)); });
   each("imus", [&](const YAML::Node& x, const std::string& p) { rh.imus.push_back(readSensor(r, x, p)); });
   rh.source = m.source();
   return rh;

@@ -8,7 +8,8 @@
 
 namespace mrqp::loop {
 
-IdealPlant::IdealPlant(std::unique_ptr<problem::MultiRobotProblem> world, const problem::MultiRobotProblem& model)
+IdealPlant::IdealPlant(std::unique_ptr<problem::MultiRobotProblem> world,
+                       const problem::MultiRobotProblem& model)
     : world_(std::move(world)), model_(model) {
   if (!world_ || world_->entityCount() != model_.entityCount()) {
     throw std::invalid_argument("ideal plant: the world and the model must hold the same entities");
@@ -47,14 +48,16 @@ int IdealPlant::frameHandle(const std::string& entity, const std::string& frame)
 
 double IdealPlant::jointPosition(int joint) const noexcept {
   const int e = joint / kStride, k = joint % kStride;
-  if (broken_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)]) return std::numeric_limits<double>::quiet_NaN();
+  if (broken_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)])
+    return std::numeric_limits<double>::quiet_NaN();
   const problem::Entity& en = world_->entity(e);
   return en.q()(en.qIndexOfV(k));
 }
 
 double IdealPlant::jointVelocity(int joint) const noexcept {
   const int e = joint / kStride, k = joint % kStride;
-  if (broken_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)]) return std::numeric_limits<double>::quiet_NaN();
+  if (broken_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)])
+    return std::numeric_limits<double>::quiet_NaN();
   return world_->entity(e).v()(k);
 }
 
@@ -68,7 +71,8 @@ double IdealPlant::jointTorque(int joint) const noexcept {
 void IdealPlant::applyServo(int joint) noexcept {
   const int e = joint / kStride, k = joint % kStride;
   const Servo& s = servos_[static_cast<std::size_t>(e)][static_cast<std::size_t>(k)];
-  if (!s.set || !s.cmd.enabled || !(s.cmd.kp > 0.0) || !std::isfinite(s.cmd.position) || !std::isfinite(s.cmd.velocity)) {
+  if (!s.set || !s.cmd.enabled || !(s.cmd.kp > 0.0) || !std::isfinite(s.cmd.position) ||
+      !std::isfinite(s.cmd.velocity)) {
     return;
   }
   problem::Entity& en = world_->entity(e);
@@ -123,7 +127,8 @@ void IdealPlant::step(double dt) noexcept {
   time_ += dt;
 }
 
-void IdealPlant::entityState(int entity, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const noexcept {
+void IdealPlant::entityState(int entity, Eigen::Ref<Eigen::VectorXd> q,
+                             Eigen::Ref<Eigen::VectorXd> v) const noexcept {
   q = world_->entity(entity).q();
   v = world_->entity(entity).v();
 }

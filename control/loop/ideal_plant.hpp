@@ -41,7 +41,8 @@ class IdealPlant final : public Plant {
   ImuSample imu(int frame) const noexcept override;
   void step(double dt) noexcept override;
   double time() const noexcept override { return time_; }
-  void entityState(int entity, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const noexcept override;
+  void entityState(int entity, Eigen::Ref<Eigen::VectorXd> q,
+                   Eigen::Ref<Eigen::VectorXd> v) const noexcept override;
 
   /// Fault injection: joint readings become NaN from now on (a broken encoder).
   void breakSensor(int joint) noexcept;

@@ -66,7 +66,8 @@ void PlantCia402Drive::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noex
 
 void PlantCia402Drive::on_nmt_reset(bool) noexcept { node_.cancel_pending(); }
 
-PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, bool, drivers::TimeNs now) noexcept {
+PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, bool,
+                                                            drivers::TimeNs now) noexcept {
   const std::uint32_t period_us = drive.od_value(0x1006, 0);
   const double period = period_us > 0u ? static_cast<double>(period_us) * 1e-6 : 1e-3;
   const int j = options_.joint;
@@ -135,7 +136,8 @@ void PlantCia402Drive::on_timer(drivers::SimNode&, drivers::TimeNs now) noexcept
   rearm();
 }
 
-void PlantCia402Drive::on_receive(drivers::SimNode&, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept {
+void PlantCia402Drive::on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
+                                  const drivers::RxFrame& rx) noexcept {
   if (kind != drivers::ReceiveResult::Frame) {
     return;
   }

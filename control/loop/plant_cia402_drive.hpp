@@ -23,13 +23,13 @@ namespace mrqp::loop {
 
 struct PlantDriveOptions {
   std::uint8_t node = 1;
-  int joint = -1;                 ///< plant joint handle
-  bool torque_mode = false;       ///< CST (else CSP)
-  double rated_torque = 100.0;    ///< N·m per 1000 ‰
-  double kp = 20000.0;            ///< CSP servo, N·m/rad
-  double kd = 300.0;              ///< N·m·s/rad
-  double torque_limit = 1e9;      ///< N·m
-  double brake_kp = 20000.0;       ///< holding brake (drive not enabled), as a stiff servo
+  int joint = -1;               ///< plant joint handle
+  bool torque_mode = false;     ///< CST (else CSP)
+  double rated_torque = 100.0;  ///< N·m per 1000 ‰
+  double kp = 20000.0;          ///< CSP servo, N·m/rad
+  double kd = 300.0;            ///< N·m·s/rad
+  double torque_limit = 1e9;    ///< N·m
+  double brake_kp = 20000.0;    ///< holding brake (drive not enabled), as a stiff servo
   double brake_kd = 300.0;
   drivers::TimeNs response_delay = 20000;
 };
@@ -38,7 +38,8 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
  public:
   PlantCia402Drive(drivers::SimNode& node, Plant& plant, const PlantDriveOptions& options);
 
-  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept override;
+  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind,
+                  const drivers::RxFrame& rx) noexcept override;
   void on_timer(drivers::SimNode& node, drivers::TimeNs now) noexcept override;
 
   // ---- fault injection ----

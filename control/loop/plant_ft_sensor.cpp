@@ -16,14 +16,17 @@ PlantFtSensor::PlantFtSensor(drivers::SimNode& node, Plant& plant, int frame, st
   node_.set_listener(this);
 }
 
-void PlantFtSensor::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept { (void)node_.send_at(frame, at); }
+void PlantFtSensor::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept {
+  (void)node_.send_at(frame, at);
+}
 
 std::array<double, 6> PlantFtSensor::wrench(drivers::TimeNs) noexcept {
   const Vector6d w = plant_.sensorWrench(frame_);
   return {w(0), w(1), w(2), w(3), w(4), w(5)};
 }
 
-void PlantFtSensor::on_receive(drivers::SimNode&, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept {
+void PlantFtSensor::on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
+                               const drivers::RxFrame& rx) noexcept {
   if (kind == drivers::ReceiveResult::Frame) (void)sensor_.on_frame(rx.frame, rx.timestamp);
 }
 

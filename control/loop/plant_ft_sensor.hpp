@@ -15,7 +15,8 @@ class PlantFtSensor final : public drivers::SimListener, private emulation::Emul
  public:
   PlantFtSensor(drivers::SimNode& node, Plant& plant, int frame, std::uint8_t node_id);
 
-  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept override;
+  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind,
+                  const drivers::RxFrame& rx) noexcept override;
 
   emulation::EmulatedFtSensor& firmware() noexcept { return sensor_; }
 

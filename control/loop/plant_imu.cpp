@@ -16,7 +16,9 @@ PlantImu::PlantImu(drivers::SimNode& node, Plant& plant, int frame, std::uint8_t
   node_.set_listener(this);
 }
 
-void PlantImu::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept { (void)node_.send_at(frame, at); }
+void PlantImu::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept {
+  (void)node_.send_at(frame, at);
+}
 
 emulation::ImuValues PlantImu::imu(drivers::TimeNs) noexcept {
   const ImuSample s = plant_.imu(frame_);
@@ -27,7 +29,8 @@ emulation::ImuValues PlantImu::imu(drivers::TimeNs) noexcept {
   return v;
 }
 
-void PlantImu::on_receive(drivers::SimNode&, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept {
+void PlantImu::on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
+                          const drivers::RxFrame& rx) noexcept {
   if (kind == drivers::ReceiveResult::Frame) (void)imu_.on_frame(rx.frame, rx.timestamp);
 }
 

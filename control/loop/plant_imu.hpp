@@ -14,7 +14,8 @@ class PlantImu final : public drivers::SimListener, private emulation::EmulatedI
  public:
   PlantImu(drivers::SimNode& node, Plant& plant, int frame, std::uint8_t node_id);
 
-  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept override;
+  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind,
+                  const drivers::RxFrame& rx) noexcept override;
 
   emulation::EmulatedImu& firmware() noexcept { return imu_; }
 

@@ -44,13 +44,16 @@ RealtimeReport setupRealtime(const RealtimeOptions& o) {
   if (void* p = std::malloc(o.heap_bytes)) {
     auto* bytes = static_cast<volatile unsigned char*>(p);
     const long page = sysconf(_SC_PAGESIZE);
-    for (std::size_t i = 0; i < o.heap_bytes; i += static_cast<std::size_t>(page > 0 ? page : 4096)) bytes[i] = 0;
+    for (std::size_t i = 0; i < o.heap_bytes; i += static_cast<std::size_t>(page > 0 ? page : 4096))
+      bytes[i] = 0;
     std::free(p);
     r.heap_prefaulted = kept;
-    r.messages.push_back(kept ? "heap pre-faulted (" + std::to_string(o.heap_bytes >> 20) + " MiB, no trimming)"
+    r.messages.push_back(kept ? "heap pre-faulted (" + std::to_string(o.heap_bytes >> 20) +
+                                    " MiB, no trimming)"
                               : "heap pre-faulted, but malloc may still trim it (mallopt refused)");
   } else {
-    r.messages.push_back("heap NOT pre-faulted: no memory for " + std::to_string(o.heap_bytes >> 20) + " MiB");
+    r.messages.push_back("heap NOT pre-faulted: no memory for " + std::to_string(o.heap_bytes >> 20) +
+                         " MiB");
   }
   touchStack(o.stack_bytes);
   r.stack_prefaulted = true;
@@ -63,8 +66,8 @@ RealtimeReport setupRealtime(const RealtimeOptions& o) {
     r.fifo = true;
     r.messages.push_back("SCHED_FIFO priority " + std::to_string(o.priority));
   } else {
-    r.messages.push_back("SCHED_FIFO NOT set: " + why(err) + " (needs CAP_SYS_NICE or an RLIMIT_RTPRIO >= " +
-                         std::to_string(o.priority) + ")");
+    r.messages.push_back("SCHED_FIFO NOT set: " + why(err) +
+                         " (needs CAP_SYS_NICE or an RLIMIT_RTPRIO >= " + std::to_string(o.priority) + ")");
   }
   const long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
   r.cpu = o.cpu >= 0 ? o.cpu : static_cast<int>(ncpu > 0 ? ncpu - 1 : 0);

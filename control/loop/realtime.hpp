@@ -10,8 +10,8 @@
 namespace mrqp::loop {
 
 struct RealtimeOptions {
-  int priority = 80;              ///< SCHED_FIFO priority
-  int cpu = -1;                   ///< -1: the last CPU of the machine
+  int priority = 80;  ///< SCHED_FIFO priority
+  int cpu = -1;       ///< -1: the last CPU of the machine
   std::size_t stack_bytes = 512 * 1024;
   std::size_t heap_bytes = 64 * 1024 * 1024;
 };

@@ -17,20 +17,20 @@ namespace mrqp::loop {
 
 struct JointIo {
   drivers::JointDevice* device = nullptr;
-  std::size_t index = 0;       ///< joint index within the device
-  int v_index = -1;            ///< in the entity's v
-  int q_index = -1;            ///< in the entity's q
-  bool torque = false;         ///< a torque-commanded joint (CST)
-  std::string name;            ///< "ENTITY.JOINT" (logs, set-up only)
+  std::size_t index = 0;  ///< joint index within the device
+  int v_index = -1;       ///< in the entity's v
+  int q_index = -1;       ///< in the entity's q
+  bool torque = false;    ///< a torque-commanded joint (CST)
+  std::string name;       ///< "ENTITY.JOINT" (logs, set-up only)
 };
 
 /// A force/torque sensor or an IMU of a robot.
 struct SensorIo {
   drivers::Device* device = nullptr;
-  std::size_t index = 0;       ///< sensor index within the device
-  int frame = -1;              ///< entity frame
-  std::string name;            ///< "ENTITY.FRAME"
-  std::uint32_t stale = 0;     ///< consecutive robot cycles without a fresh sample
+  std::size_t index = 0;    ///< sensor index within the device
+  int frame = -1;           ///< entity frame
+  std::string name;         ///< "ENTITY.FRAME"
+  std::uint32_t stale = 0;  ///< consecutive robot cycles without a fresh sample
 };
 
 struct RobotIo {
@@ -44,15 +44,15 @@ struct RobotIo {
   std::vector<JointIo> joints;
   std::vector<SensorIo> ft_sensors;
   std::vector<SensorIo> imus;
-  std::vector<std::array<double, 6>> wrench;               ///< last F/T sample per sensor (sensor frame)
-  std::vector<drivers::ImuFeedback> imu;                   ///< last IMU sample per IMU
+  std::vector<std::array<double, 6>> wrench;  ///< last F/T sample per sensor (sensor frame)
+  std::vector<drivers::ImuFeedback> imu;      ///< last IMU sample per IMU
   // Per-joint cycle storage (sized at set-up).
   std::vector<double> q_cmd, v_cmd, tau_cmd;
   std::vector<double> q_meas, v_meas;
-  std::vector<double> q_sent, v_sent;                     ///< the last setpoint sent, as the drive reports it
-  std::vector<std::uint32_t> stale;                       ///< consecutive robot cycles without fresh feedback
-  std::vector<double> miss_rate;                          ///< averaged rate of robot cycles without fresh feedback
-  double tracking_error_max = 0.0;                        ///< |measured − commanded|, rad
+  std::vector<double> q_sent, v_sent;  ///< the last setpoint sent, as the drive reports it
+  std::vector<std::uint32_t> stale;    ///< consecutive robot cycles without fresh feedback
+  std::vector<double> miss_rate;       ///< averaged rate of robot cycles without fresh feedback
+  double tracking_error_max = 0.0;     ///< |measured − commanded|, rad
 };
 
 }  // namespace mrqp::loop

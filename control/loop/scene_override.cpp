@@ -44,7 +44,8 @@ std::vector<Segment> parsePath(const std::string& path, const std::string& file)
 }
 
 bool isNumber(const std::string& s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+  return !s.empty() &&
+         std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
 
 /// The extent [pos, end) of a one-line value in the text, or false.
@@ -84,7 +85,8 @@ bool valueExtent(const std::string& text, const YAML::Node& n, std::size_t* pos,
 
 }  // namespace
 
-std::string applySceneOverride(const std::string& text, const std::string& file, const std::string& assignment) {
+std::string applySceneOverride(const std::string& text, const std::string& file,
+                               const std::string& assignment) {
   const std::size_t eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
     throw scene::SceneError(file + ":1: " + assignment + ": --set: expected KEY=VALUE");
@@ -126,14 +128,15 @@ std::string applySceneOverride(const std::string& text, const std::string& file,
         idx = static_cast<std::size_t>(std::stoul(s.index));
       } else {
         for (std::size_t i = 0; i < node.size(); ++i) {
-          if (node[i].IsMap() && node[i]["name"] && node[i]["name"].IsScalar() && node[i]["name"].Scalar() == s.index) {
+          if (node[i].IsMap() && node[i]["name"] && node[i]["name"].IsScalar() &&
+              node[i]["name"].Scalar() == s.index) {
             idx = i;
           }
         }
       }
       if (idx >= node.size()) {
-        scene::Reader(file).fail(node, at, "--set: no item [" + s.index + "] (the list has " +
-                                               std::to_string(node.size()) + ")");
+        scene::Reader(file).fail(
+            node, at, "--set: no item [" + s.index + "] (the list has " + std::to_string(node.size()) + ")");
       }
       at = scene::item(at, idx);
       const YAML::Node element = node[idx];

@@ -12,6 +12,7 @@
 namespace mrqp::loop {
 
 /// `text` (the scene file `file`) with `assignment` ("KEY=VALUE") applied.
-std::string applySceneOverride(const std::string& text, const std::string& file, const std::string& assignment);
+std::string applySceneOverride(const std::string& text, const std::string& file,
+                               const std::string& assignment);
 
 }  // namespace mrqp::loop

@@ -45,7 +45,8 @@ Timeline Timeline::read(const std::string& text, const std::string& file, const 
     } else {
       const std::string name = m.name("contact");
       const auto it = sc.contacts.find(name);
-      if (it == sc.contacts.end()) r.fail(*m.find("contact"), m.at("contact"), "unknown contact '" + name + "'");
+      if (it == sc.contacts.end())
+        r.fail(*m.find("contact"), m.at("contact"), "unknown contact '" + name + "'");
       e.id = it->second;
       if (!m.has("active")) r.fail(items[i], path, "a contact can only be switched off ('active: false')");
       e.kind = TimelineEvent::Kind::ContactOff;
@@ -63,10 +64,18 @@ void Timeline::onCycle(Controller& c, drivers::TimeNs) noexcept {
   while (next_ < events_.size() && events_[next_].at <= t + 1e-12) {
     const TimelineEvent& e = events_[next_++];
     switch (e.kind) {
-      case TimelineEvent::Kind::TaskWeight: (void)p.setTaskWeight(e.id, e.value); break;
-      case TimelineEvent::Kind::TaskTarget: (void)p.setTaskTarget(e.id, e.target); break;
-      case TimelineEvent::Kind::TaskOff: (void)p.removeTask(e.id); break;
-      case TimelineEvent::Kind::ContactOff: (void)p.removeContact(e.id); break;
+      case TimelineEvent::Kind::TaskWeight:
+        (void)p.setTaskWeight(e.id, e.value);
+        break;
+      case TimelineEvent::Kind::TaskTarget:
+        (void)p.setTaskTarget(e.id, e.target);
+        break;
+      case TimelineEvent::Kind::TaskOff:
+        (void)p.removeTask(e.id);
+        break;
+      case TimelineEvent::Kind::ContactOff:
+        (void)p.removeContact(e.id);
+        break;
     }
   }
 }

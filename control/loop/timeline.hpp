@@ -18,7 +18,7 @@ struct TimelineEvent {
   enum class Kind : std::uint8_t { TaskWeight = 0, TaskTarget, TaskOff, ContactOff };
   double at = 0.0;  ///< s since the first cycle
   Kind kind = Kind::TaskWeight;
-  int id = -1;      ///< task or contact id
+  int id = -1;  ///< task or contact id
   double value = 0.0;
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
 };

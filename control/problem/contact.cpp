@@ -8,8 +8,7 @@ namespace mrqp::problem {
 
 Eigen::Vector3d coneGenerator(const Eigen::Vector3d& n, double mu, int k, int K) noexcept {
   // Any unit vector not parallel to n gives t1; t2 completes the right-handed basis.
-  const Eigen::Vector3d seed =
-      std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d t1 = (seed - seed.dot(n) * n).normalized();
   const Eigen::Vector3d t2 = n.cross(t1);
   const double th = 2.0 * M_PI * static_cast<double>(k) / static_cast<double>(K);

@@ -35,9 +35,9 @@ class ModelEntity final : public Entity {
       const auto ib = static_cast<std::size_t>(b);
       body_frame_[ib] = Model::frameIndex(Model::bodyNames()[ib]);
       body_mass_[ib] = phi(10 * b);
-      body_com_[ib] = body_mass_[ib] > 0.0 ? Eigen::Vector3d(phi.template segment<3>(10 * b + 1) /
-                                                             body_mass_[ib])
-                                           : Eigen::Vector3d::Zero();
+      body_com_[ib] = body_mass_[ib] > 0.0
+                          ? Eigen::Vector3d(phi.template segment<3>(10 * b + 1) / body_mass_[ib])
+                          : Eigen::Vector3d::Zero();
     }
     // Passive where the model says the joint has no effort (a door hinge), actuated otherwise.
     for (int k = Model::floating_base ? 6 : 0; k < Model::nv; ++k) {
@@ -49,9 +49,7 @@ class ModelEntity final : public Entity {
   const char* frameName(int f) const noexcept override {
     return f >= 0 && f < Model::nframes ? Model::frameNames()[static_cast<std::size_t>(f)] : "";
   }
-  int frameIndex(const std::string& n) const noexcept override {
-    return Model::frameIndex(n.c_str());
-  }
+  int frameIndex(const std::string& n) const noexcept override { return Model::frameIndex(n.c_str()); }
   const char* jointName(int j) const noexcept override {
     return j >= 0 && j < nv_ - jointOffset() ? Model::jointNames()[static_cast<std::size_t>(j)] : "";
   }

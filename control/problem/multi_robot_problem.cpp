@@ -29,10 +29,7 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) noexcept {
 
 MultiRobotProblem::MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entities,
                                      const ProblemSettings& settings)
-    : settings_(settings),
-      entities_(std::move(entities)),
-      qp_(0, 0, 0),
-      solver_(0, 0, 0) {
+    : settings_(settings), entities_(std::move(entities)), qp_(0, 0, 0), solver_(0, 0, 0) {
   if (entities_.empty() || static_cast<int>(entities_.size()) > kMaxEntities) {
     throw std::invalid_argument("a problem holds 1 to 32 entities");
   }
@@ -234,9 +231,11 @@ bool MultiRobotProblem::setTaskReference(int id, const Eigen::Ref<const Eigen::V
   return taskActive(id) && task(id).setReference(velocity, acceleration);
 }
 
-bool MultiRobotProblem::setTaskReference(int id, const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
+bool MultiRobotProblem::setTaskReference(int id, const Eigen::Vector3d& position,
+                                         const Eigen::Vector3d& velocity,
                                          const Eigen::Vector3d& acceleration) noexcept {
-  if (!taskActive(id) || task(id).referenceRows() != 3 || !velocity.allFinite() || !acceleration.allFinite()) {
+  if (!taskActive(id) || task(id).referenceRows() != 3 || !velocity.allFinite() ||
+      !acceleration.allFinite()) {
     return false;
   }
   return task(id).setTarget(position) && task(id).setReference(velocity, acceleration);
@@ -329,7 +328,8 @@ bool MultiRobotProblem::removeConstraint(int id) noexcept {
 }
 
 bool MultiRobotProblem::restoreConstraint(int id) noexcept {
-  if (id < 0 || id >= constraintCapacity() || !constraints_[static_cast<std::size_t>(id)].constraint) return false;
+  if (id < 0 || id >= constraintCapacity() || !constraints_[static_cast<std::size_t>(id)].constraint)
+    return false;
   ConstraintSlot& s = constraints_[static_cast<std::size_t>(id)];
   if (s.active) return true;
   if (const char* why = admit(*s.constraint)) {

@@ -131,7 +131,9 @@ class MultiRobotProblem {
   bool restoreConstraint(int id) noexcept;
   std::unique_ptr<Constraint> releaseConstraint(int id) noexcept;
   bool constraintActive(int id) const noexcept;
-  const Constraint& constraint(int id) const noexcept { return *constraints_[static_cast<std::size_t>(id)].constraint; }
+  const Constraint& constraint(int id) const noexcept {
+    return *constraints_[static_cast<std::size_t>(id)].constraint;
+  }
   Constraint& constraint(int id) noexcept { return *constraints_[static_cast<std::size_t>(id)].constraint; }
   int constraintCapacity() const noexcept { return static_cast<int>(constraints_.size()); }
 
@@ -166,12 +168,15 @@ class MultiRobotProblem {
     return contacts_[static_cast<std::size_t>(contact)].c_world;
   }
   /// Column of a contact's first λ in x (−1 when inactive), after update().
-  int lambdaOffset(int contact) const noexcept { return contacts_[static_cast<std::size_t>(contact)].var_offset; }
+  int lambdaOffset(int contact) const noexcept {
+    return contacts_[static_cast<std::size_t>(contact)].var_offset;
+  }
   /// λ variables of every active contact, after update() (they follow the q̈ in x, in slot order).
   int lambdaCount() const noexcept { return nlambda_; }
   /// The wrench basis W of a contact after update(): its wrench is W λ (moment about
   /// contactPoint(); force), columns 0 … variables() − 1.
-  const Eigen::Matrix<double, 6, kMaxContactPoints * kMaxConeGenerators>& contactWrenchBasis(int contact) const noexcept {
+  const Eigen::Matrix<double, 6, kMaxContactPoints * kMaxConeGenerators>& contactWrenchBasis(
+      int contact) const noexcept {
     return contacts_[static_cast<std::size_t>(contact)].W;
   }
   /// A 6 × (largest nv) scratch matrix for task and constraint objects within their update().
@@ -193,9 +198,9 @@ class MultiRobotProblem {
     // frames (the constraint belongs to the pair of frames; writing it twice would make the
     // equalities dependent and, with drift correction at two points, inconsistent).
     int rows = 0;
-    Eigen::Vector3d c_local = Eigen::Vector3d::Zero();   // centroid, surface frame
+    Eigen::Vector3d c_local = Eigen::Vector3d::Zero();  // centroid, surface frame
     Eigen::Vector3d c_world = Eigen::Vector3d::Zero();
-    Eigen::Vector3d target_p = Eigen::Vector3d::Zero();  // environment: centroid; other: in its frame
+    Eigen::Vector3d target_p = Eigen::Vector3d::Zero();      // environment: centroid; other: in its frame
     Eigen::Matrix3d target_R = Eigen::Matrix3d::Identity();  // environment: R_sf; other: R_ofᵀR_sf
     Eigen::Matrix<double, 6, kMaxContactPoints * kMaxConeGenerators> W;  // wrench basis about c
     Eigen::Matrix<double, kMaxContactPoints * kMaxConeGenerators, 1> lambda;
@@ -206,9 +211,9 @@ class MultiRobotProblem {
     bool active = false;
   };
   struct ConstraintSlot {
-    std::unique_ptr<Constraint> owned;                 // an object handed to addConstraint
-    std::optional<JointInequality> joint_inequality;   // built in place by addJointInequality
-    Constraint* constraint = nullptr;                  // the one of the two in use, or nullptr
+    std::unique_ptr<Constraint> owned;                // an object handed to addConstraint
+    std::optional<JointInequality> joint_inequality;  // built in place by addJointInequality
+    Constraint* constraint = nullptr;                 // the one of the two in use, or nullptr
     bool active = false;
     int ineq_row = 0, eq_row = 0;  // first rows in C and A, after layout()
   };
@@ -239,12 +244,12 @@ class MultiRobotProblem {
 
   qp::QpProblem qp_;
   qp::QpSolver solver_;
-  Eigen::MatrixXd E_;        // stacked EoM rows: τ = E x + N on actuated rows (Σnv × n)
-  Eigen::VectorXd Nall_;     // stacked N
-  Eigen::MatrixXd Ja_, Jb_;  // 6 × max nv work
+  Eigen::MatrixXd E_;           // stacked EoM rows: τ = E x + N on actuated rows (Σnv × n)
+  Eigen::VectorXd Nall_;        // stacked N
+  Eigen::MatrixXd Ja_, Jb_;     // 6 × max nv work
   mutable Eigen::MatrixXd Jw_;  // 6 × max nv scratch of task and constraint objects
-  Eigen::MatrixXd T_;        // task rows, 6 × n
-  Eigen::VectorXd t_;        // task targets, max(6, max nv, max λ)
+  Eigen::MatrixXd T_;           // task rows, 6 × n
+  Eigen::VectorXd t_;           // task targets, max(6, max nv, max λ)
   Eigen::VectorXd x_, tau_;
   const char* error_ = "";
 };

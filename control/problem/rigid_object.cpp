@@ -61,13 +61,11 @@ RigidObject::RigidObject(std::string name, double mass, const Eigen::Vector3d& c
     reject(name_, s.str());
   }
   const Eigen::Matrix3d Ic = 0.5 * (inertia_about_com + inertia_about_com.transpose());
-  const double min_eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ic, Eigen::EigenvaluesOnly)
-                             .eigenvalues()
-                             .minCoeff();
+  const double min_eig =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ic, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
   if (!(min_eig > 0.0)) {
     std::ostringstream s;
-    s << "inertia about the centre of mass is not positive definite (smallest eigenvalue "
-      << min_eig << ")";
+    s << "inertia about the centre of mass is not positive definite (smallest eigenvalue " << min_eig << ")";
     reject(name_, s.str());
   }
   if (frame_name_.empty()) frame_name_ = name_;
@@ -88,18 +86,14 @@ RigidObject::RigidObject(std::string name, double mass, const Eigen::Vector3d& c
 
 RigidObject::InertialParameters RigidObject::inertialParameters() const noexcept {
   InertialParameters phi;
-  phi << mass_, mass_ * c_.x(), mass_ * c_.y(), mass_ * c_.z(), Io_(0, 0), Io_(0, 1), Io_(1, 1),
-      Io_(0, 2), Io_(1, 2), Io_(2, 2);
+  phi << mass_, mass_ * c_.x(), mass_ * c_.y(), mass_ * c_.z(), Io_(0, 0), Io_(0, 1), Io_(1, 1), Io_(0, 2),
+      Io_(1, 2), Io_(2, 2);
   return phi;
 }
 
-const char* RigidObject::frameName(int frame) const noexcept {
-  return frame == 0 ? frame_name_.c_str() : "";
-}
+const char* RigidObject::frameName(int frame) const noexcept { return frame == 0 ? frame_name_.c_str() : ""; }
 
-int RigidObject::frameIndex(const std::string& name) const noexcept {
-  return name == frame_name_ ? 0 : -1;
-}
+int RigidObject::frameIndex(const std::string& name) const noexcept { return name == frame_name_ ? 0 : -1; }
 
 const char* RigidObject::jointName(int /*joint*/) const noexcept { return ""; }
 

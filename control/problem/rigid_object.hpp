@@ -62,10 +62,10 @@ class RigidObject final : public Entity {
   void integrateConfiguration(double dt) noexcept override;
 
   std::string frame_name_;
-  Eigen::Vector3d c_;                 ///< centre of mass, object frame
-  Eigen::Matrix3d Ic_;                ///< rotational inertia about the centre of mass
-  Eigen::Matrix3d Io_;                ///< rotational inertia about the object origin
-  Eigen::Matrix<double, 6, 6> I6_;    ///< spatial inertia at the origin
+  Eigen::Vector3d c_;               ///< centre of mass, object frame
+  Eigen::Matrix3d Ic_;              ///< rotational inertia about the centre of mass
+  Eigen::Matrix3d Io_;              ///< rotational inertia about the object origin
+  Eigen::Matrix<double, 6, 6> I6_;  ///< spatial inertia at the origin
   // State of the last update(): pose and body twist.
   Eigen::Matrix3d R_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_ = Eigen::Vector3d::Zero();

@@ -13,7 +13,10 @@ class SupportPolygon {
  public:
   static constexpr int kMaxPoints = 64;
 
-  void clear() noexcept { n_points_ = 0; n_edges_ = 0; }
+  void clear() noexcept {
+    n_points_ = 0;
+    n_edges_ = 0;
+  }
   /// Adds a point (world, only x and y are used). Returns false once the capacity is full.
   bool add(const Eigen::Vector3d& p) noexcept;
   /// Computes the hull (Andrew's monotone chain) and its half-planes. Fewer than 3 distinct
@@ -25,9 +28,7 @@ class SupportPolygon {
   const Eigen::Vector2d& normal(int i) const noexcept { return a_[static_cast<std::size_t>(i)]; }
   double offset(int i) const noexcept { return b_[static_cast<std::size_t>(i)]; }
   /// Signed distance of c to edge i (positive inside).
-  double distance(int i, const Eigen::Vector2d& c) const noexcept {
-    return normal(i).dot(c) - offset(i);
-  }
+  double distance(int i, const Eigen::Vector2d& c) const noexcept { return normal(i).dot(c) - offset(i); }
   /// Smallest signed distance to the edges (positive inside); −inf without a polygon.
   double margin(const Eigen::Vector2d& c) const noexcept;
   int hullSize() const noexcept { return n_edges_; }

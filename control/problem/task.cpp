@@ -20,9 +20,7 @@ bool Task::setReference(const Eigen::Ref<const Eigen::VectorXd>& velocity,
   return true;
 }
 
-double Task::dampingUsed() const noexcept {
-  return damping_ >= 0.0 ? damping_ : 2.0 * std::sqrt(stiffness_);
-}
+double Task::dampingUsed() const noexcept { return damping_ >= 0.0 ? damping_ : 2.0 * std::sqrt(stiffness_); }
 
 bool Task::setWeight(double w) noexcept {
   if (!(w >= 0.0) || !std::isfinite(w)) return false;

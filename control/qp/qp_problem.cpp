@@ -63,23 +63,34 @@ double QpProblem::objective(const ConstVectorRef& x) const noexcept {
 
 const char* toString(QpStatus status) noexcept {
   switch (status) {
-    case QpStatus::Optimal: return "optimal";
-    case QpStatus::Infeasible: return "infeasible";
-    case QpStatus::IterationLimit: return "iteration-limit";
-    case QpStatus::NumericalFailure: return "numerical-failure";
-    case QpStatus::InvalidInput: return "invalid-input";
-    case QpStatus::NotSolved: return "not-solved";
+    case QpStatus::Optimal:
+      return "optimal";
+    case QpStatus::Infeasible:
+      return "infeasible";
+    case QpStatus::IterationLimit:
+      return "iteration-limit";
+    case QpStatus::NumericalFailure:
+      return "numerical-failure";
+    case QpStatus::InvalidInput:
+      return "invalid-input";
+    case QpStatus::NotSolved:
+      return "not-solved";
   }
   return "unknown";
 }
 
 const char* toString(QpInputError error) noexcept {
   switch (error) {
-    case QpInputError::None: return "none";
-    case QpInputError::CapacityExceeded: return "capacity-exceeded";
-    case QpInputError::NonFiniteData: return "non-finite-data";
-    case QpInputError::InvalidBounds: return "invalid-bounds";
-    case QpInputError::NotConvex: return "not-convex";
+    case QpInputError::None:
+      return "none";
+    case QpInputError::CapacityExceeded:
+      return "capacity-exceeded";
+    case QpInputError::NonFiniteData:
+      return "non-finite-data";
+    case QpInputError::InvalidBounds:
+      return "invalid-bounds";
+    case QpInputError::NotConvex:
+      return "not-convex";
   }
   return "unknown";
 }

@@ -77,8 +77,7 @@ void applyHouseholderRight(MB&& M, const VB& v, double tau, WB&& w) noexcept {
 // ---------------------------------------------------------------------------------------------
 // construction
 
-QpSolver::QpSolver(int max_variables, int max_equalities, int max_inequalities,
-                   const QpSettings& settings)
+QpSolver::QpSolver(int max_variables, int max_equalities, int max_inequalities, const QpSettings& settings)
     : settings_(settings),
       max_n_(max_variables),
       max_me_(max_equalities),
@@ -134,8 +133,7 @@ QpSolver::QpSolver(int max_variables, int max_equalities, int max_inequalities,
 }
 
 QpSolver::QpSolver(const QpProblem& problem, const QpSettings& settings)
-    : QpSolver(problem.maxVariables(), problem.maxEqualities(), problem.maxInequalities(),
-               settings) {}
+    : QpSolver(problem.maxVariables(), problem.maxEqualities(), problem.maxInequalities(), settings) {}
 
 void QpSolver::resetWarmStart() noexcept {
   warm_count_ = 0;
@@ -183,7 +181,8 @@ void QpSolver::normalTimesJ(const Constraint& c) noexcept {
   }
 }
 
-void QpSolver::gradient(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> out) const noexcept {
+void QpSolver::gradient(const Eigen::Ref<const Eigen::VectorXd>& x,
+                        Eigen::Ref<Eigen::VectorXd> out) const noexcept {
   out.head(n_).noalias() = Hs_.topLeftCorner(n_, n_) * x.head(n_);
   out.head(n_) += p_->g();
   if (regularized_) out.head(n_) += rho_ * (x.head(n_) - xc_.head(n_));
@@ -233,8 +232,8 @@ QpStatus QpSolver::validate(const QpProblem& p) noexcept {
   n_ = p.n();
   me_ = p.me();
   mi_ = p.mi();
-  if (!allFinite(p.H()) || !allFinite(p.g()) || !allFinite(p.A()) || !allFinite(p.b()) ||
-      !allFinite(p.C()) || anyNaN(p.l()) || anyNaN(p.u()) || anyNaN(p.xl()) || anyNaN(p.xu())) {
+  if (!allFinite(p.H()) || !allFinite(p.g()) || !allFinite(p.A()) || !allFinite(p.b()) || !allFinite(p.C()) ||
+      anyNaN(p.l()) || anyNaN(p.u()) || anyNaN(p.xl()) || anyNaN(p.xu())) {
     info_.input_error = QpInputError::NonFiniteData;
     return QpStatus::InvalidInput;
   }
@@ -516,12 +515,10 @@ QpStatus QpSolver::factorReducedHessian() noexcept {
         }
       }
     } else {
-      for (int j = 0; j < nz; ++j)
-        W_.col(j).head(n).noalias() = Hs_.topLeftCorner(n, n) * J_.col(j).head(n);
+      for (int j = 0; j < nz; ++j) W_.col(j).head(n).noalias() = Hs_.topLeftCorner(n, n) * J_.col(j).head(n);
     }
     for (int j = 0; j < nz; ++j)
-      Hz_.col(j).segment(j, nz - j).noalias() =
-          J_.block(0, j, n, nz - j).transpose() * W_.col(j).head(n);
+      Hz_.col(j).segment(j, nz - j).noalias() = J_.block(0, j, n, nz - j).transpose() * W_.col(j).head(n);
   }
   double scale = 0.0;
   for (int j = 0; j < nz; ++j) scale = std::max(scale, Hz_(j, j));
@@ -549,14 +546,12 @@ QpStatus QpSolver::factorReducedHessian() noexcept {
     auto J = J_.topLeftCorner(n, n);
     J.setIdentity();
     for (int j = 0; j < n; ++j) {
-      if (j > 0)
-        J.col(j).head(j).noalias() -= J.topLeftCorner(j, j) * Lz_.row(j).head(j).transpose();
+      if (j > 0) J.col(j).head(j).noalias() -= J.topLeftCorner(j, j) * Lz_.row(j).head(j).transpose();
       J.col(j).head(j + 1) /= Lz_(j, j);
     }
   } else {
     for (int j = 0; j < nz; ++j) {
-      if (j > 0)
-        J_.col(j).head(n).noalias() -= J_.topLeftCorner(n, j) * Lz_.row(j).head(j).transpose();
+      if (j > 0) J_.col(j).head(n).noalias() -= J_.topLeftCorner(n, j) * Lz_.row(j).head(j).transpose();
       J_.col(j).head(n) /= Lz_(j, j);
     }
   }
@@ -665,8 +660,8 @@ QpStatus QpSolver::runAttempt(bool warm) noexcept {
     if (!regularized_) break;
     // proximal step converged when ρ‖x − x_c‖ (the stationarity error it causes) is negligible
     t3_.head(n_).noalias() = Hs_.topLeftCorner(n_, n_) * x_.head(n_);
-    const double gscale = std::max({1.0, p_->g().lpNorm<Eigen::Infinity>(),
-                                    n_ > 0 ? t3_.head(n_).lpNorm<Eigen::Infinity>() : 0.0});
+    const double gscale = std::max(
+        {1.0, p_->g().lpNorm<Eigen::Infinity>(), n_ > 0 ? t3_.head(n_).lpNorm<Eigen::Infinity>() : 0.0});
     const double step = n_ > 0 ? (x_.head(n_) - xc_.head(n_)).lpNorm<Eigen::Infinity>() : 0.0;
     if (rho_ * step <= settings_.dual_tolerance * gscale) break;
     ++info_.proximal_iterations;
@@ -776,9 +771,15 @@ void QpSolver::projectOnEqualities() noexcept {
     const int i = srcIndex(s);
     double ax;
     switch (srcKind(s)) {
-      case kSrcA: ax = A.row(i).dot(x_.head(n).transpose()); break;
-      case kSrcC: ax = C.row(i).dot(x_.head(n).transpose()); break;
-      default: ax = x_(i); break;
+      case kSrcA:
+        ax = A.row(i).dot(x_.head(n).transpose());
+        break;
+      case kSrcC:
+        ax = C.row(i).dot(x_.head(n).transpose());
+        break;
+      default:
+        ax = x_(i);
+        break;
     }
     e(k) = be_(orig) - ax;
   }
@@ -825,7 +826,8 @@ int QpSolver::chooseViolated() noexcept {
   const auto xl = p_->xl();
   const auto xu = p_->xu();
   for (int j = 0; j < n; ++j) {
-    if (bound_kind_[static_cast<std::size_t>(j)] != kInequality || bound_active_[static_cast<std::size_t>(j)] != 0)
+    if (bound_kind_[static_cast<std::size_t>(j)] != kInequality ||
+        bound_active_[static_cast<std::size_t>(j)] != 0)
       continue;
     double viol = xl(j) - x_(j);
     if (viol > 0.0 && viol > tol * std::max(1.0, std::abs(xl(j))) && viol > best) {
@@ -844,7 +846,8 @@ int QpSolver::chooseViolated() noexcept {
   const auto l = p_->l();
   const auto u = p_->u();
   for (int i = 0; i < mi; ++i) {
-    if (row_kind_[static_cast<std::size_t>(i)] != kInequality || row_active_[static_cast<std::size_t>(i)] != 0)
+    if (row_kind_[static_cast<std::size_t>(i)] != kInequality ||
+        row_active_[static_cast<std::size_t>(i)] != 0)
       continue;
     const double nrm = rownorm_(i);
     const double cxi = cx_(i);
@@ -1089,17 +1092,23 @@ QpStatus QpSolver::checkKkt() noexcept {
     const std::int32_t s = eq_src_[static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)])];
     const int i = srcIndex(s);
     switch (srcKind(s)) {
-      case kSrcA: y(i) = w(k); break;
-      case kSrcC: lam(i) = w(k); break;
-      default: mu(i) = w(k); break;
+      case kSrcA:
+        y(i) = w(k);
+        break;
+      case kSrcC:
+        lam(i) = w(k);
+        break;
+      default:
+        mu(i) = w(k);
+        break;
     }
   }
   // stationarity residual Hx + g + Aᵀy + Cᵀλ + μ
   auto res = t2_.head(n);
   auto tmp = grad_.head(n);
-  double scale = std::max({1.0, n > 0 ? hx.lpNorm<Eigen::Infinity>() : 0.0,
-                           n > 0 ? p_->g().lpNorm<Eigen::Infinity>() : 0.0,
-                           n > 0 ? mu.lpNorm<Eigen::Infinity>() : 0.0});
+  double scale =
+      std::max({1.0, n > 0 ? hx.lpNorm<Eigen::Infinity>() : 0.0,
+                n > 0 ? p_->g().lpNorm<Eigen::Infinity>() : 0.0, n > 0 ? mu.lpNorm<Eigen::Infinity>() : 0.0});
   res = hx + p_->g() + mu;
   if (me > 0) {
     tmp.noalias() = A.transpose() * y;

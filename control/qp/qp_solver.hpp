@@ -108,9 +108,7 @@ class QpSolver {
   // λ_i ≥ 0 at its upper bound, 0 when inactive (same for μ and the variable bounds); y is free.
   Eigen::Ref<const Eigen::VectorXd> x() const noexcept { return x_.head(n_); }
   Eigen::Ref<const Eigen::VectorXd> equalityMultipliers() const noexcept { return y_.head(me_); }
-  Eigen::Ref<const Eigen::VectorXd> inequalityMultipliers() const noexcept {
-    return lambda_.head(mi_);
-  }
+  Eigen::Ref<const Eigen::VectorXd> inequalityMultipliers() const noexcept { return lambda_.head(mi_); }
   Eigen::Ref<const Eigen::VectorXd> boundMultipliers() const noexcept { return mu_.head(n_); }
 
  private:
@@ -169,10 +167,10 @@ class QpSolver {
 
   // sizes of the current solve
   int n_ = 0, me_ = 0, mi_ = 0;
-  int meq_ = 0;    // equality rows (A, C with l == u, fixed bounds)
-  int rank_ = 0;   // their rank
-  int nz_ = 0;     // n - rank: dimension of the free subspace (columns of J)
-  int q_ = 0;      // active inequalities/bounds (first q_ columns of J)
+  int meq_ = 0;   // equality rows (A, C with l == u, fixed bounds)
+  int rank_ = 0;  // their rank
+  int nz_ = 0;    // n - rank: dimension of the free subspace (columns of J)
+  int q_ = 0;     // active inequalities/bounds (first q_ columns of J)
   int max_iter_ = 0;
   int iter_ = 0;  // steps of the current attempt
   Constraint cand_;
@@ -183,7 +181,7 @@ class QpSolver {
   // problem-derived
   Eigen::MatrixXd Hs_;  // symmetric part of H
   Eigen::VectorXd rownorm_;
-  std::vector<std::int8_t> row_kind_, bound_kind_;    // kFree / kInequality / kEquality
+  std::vector<std::int8_t> row_kind_, bound_kind_;  // kFree / kInequality / kEquality
   // Envelope of Hs: rows h_lo_[j] … h_hi_[j] hold column j's non-zeros (h_hi_ < h_lo_: empty).
   // A Hessian made of a diagonal and a few dense blocks (the usual task Hessian) then costs
   // O(Σ envelope · nz) instead of O(n² nz) in the reduced Hessian.

@@ -41,7 +41,8 @@ int BuildContext::frame(int e, const std::string& name, const Source& src, const
   if (f < 0) {
     std::vector<std::string> names;
     for (int k = 0; k < en.frameCount(); ++k) names.emplace_back(en.frameName(k));
-    fail(src, field, "entity '" + en.name() + "' has no frame '" + name + "' (frames: " + listOf(names) + ")");
+    fail(src, field,
+         "entity '" + en.name() + "' has no frame '" + name + "' (frames: " + listOf(names) + ")");
   }
   return f;
 }
@@ -52,7 +53,8 @@ int BuildContext::joint(int e, const std::string& name, const Source& src, const
   if (k < 0) {
     std::vector<std::string> names;
     for (int j = 0; j < en.nv() - en.jointOffset(); ++j) names.emplace_back(en.jointName(j));
-    fail(src, field, "entity '" + en.name() + "' has no joint '" + name + "' (joints: " + listOf(names) + ")");
+    fail(src, field,
+         "entity '" + en.name() + "' has no joint '" + name + "' (joints: " + listOf(names) + ")");
   }
   return k;
 }

@@ -32,7 +32,8 @@ std::vector<std::string> jointNames(const problem::Entity& e) {
   return out;
 }
 
-std::unique_ptr<problem::Entity> makeEntity(const EntitySpec& es, std::size_t i, const ModelRegistry& models) {
+std::unique_ptr<problem::Entity> makeEntity(const EntitySpec& es, std::size_t i,
+                                            const ModelRegistry& models) {
   const std::string field = "entities[" + std::to_string(i) + "]";
   std::unique_ptr<problem::Entity> e;
   if (es.model == "rigid_object") {

@@ -34,7 +34,7 @@ struct SpringSpec {
 
 struct RigidObjectSpec {
   double mass = 1.0;
-  Eigen::Vector3d com = Eigen::Vector3d::Zero();        // in the object frame
+  Eigen::Vector3d com = Eigen::Vector3d::Zero();          // in the object frame
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity();  // about the CoM, object axes
 };
 
@@ -42,9 +42,9 @@ struct EntitySpec {
   std::string name;
   /// A compiled-in generated model ("panda", "jvrc1", "door", ...) or "rigid_object".
   std::string model;
-  RigidObjectSpec object;             // when model == "rigid_object"
-  PoseSpec pose;                      // floating base: initial pose; fixed base: placement
-  std::map<std::string, double> q;    // initial joint positions by joint name (others neutral)
+  RigidObjectSpec object;           // when model == "rigid_object"
+  PoseSpec pose;                    // floating base: initial pose; fixed base: placement
+  std::map<std::string, double> q;  // initial joint positions by joint name (others neutral)
   /// "all" (default for robots), "none" (mechanisms and objects), or a list of joint names.
   std::string actuation = "default";
   std::vector<std::string> actuated_joints;
@@ -55,9 +55,9 @@ struct EntitySpec {
 
 struct ContactSpec {
   std::string name;
-  std::string entity, frame;           // the surface; points and normal are in this frame
-  std::string other_entity;            // empty: the fixed environment ("ground")
-  std::string other_frame;             // frame of other_entity that carries the reaction
+  std::string entity, frame;  // the surface; points and normal are in this frame
+  std::string other_entity;   // empty: the fixed environment ("ground")
+  std::string other_frame;    // frame of other_entity that carries the reaction
   std::vector<Eigen::Vector3d> points;
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // direction of the force ON `entity`
   double friction = 0.7;
@@ -68,15 +68,15 @@ struct ContactSpec {
 
 struct TaskSpec {
   std::string name;
-  std::string type = "posture";       // the kind's name (task_registry.cpp)
-  std::vector<std::string> entities;  // one, or several for a group CoM
-  std::string frame;                  // frame tasks
+  std::string type = "posture";                     // the kind's name (task_registry.cpp)
+  std::vector<std::string> entities;                // one, or several for a group CoM
+  std::string frame;                                // frame tasks
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // frame tasks: controlled point in the frame
-  std::string joint;                  // joint target
-  std::string contact;                // force tasks
+  std::string joint;                                // joint target
+  std::string contact;                              // force tasks
   double weight = 1.0;
   double stiffness = 10.0;
-  std::optional<double> damping;      // default: critical, 2·sqrt(stiffness)
+  std::optional<double> damping;  // default: critical, 2·sqrt(stiffness)
   /// Dimension selector, e.g. {1,1,0} for x and y of a CoM. Empty: all dimensions.
   std::vector<int> dims;
   /// Target: posture (joint name → value, others keep their initial value), CoM/position xyz,
@@ -123,15 +123,15 @@ struct ConstraintItemSpec {
 };
 
 struct SettingsSpec {
-  double dt = 0.001;              // control period, s
-  double duration = 5.0;          // length of a simulated run, s
+  double dt = 0.001;      // control period, s
+  double duration = 5.0;  // length of a simulated run, s
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
-  int max_tasks = 32;             // capacity: tasks that may exist at once
-  int max_contacts = 16;          // capacity: contacts that may exist at once
+  int max_tasks = 32;                // capacity: tasks that may exist at once
+  int max_contacts = 16;             // capacity: contacts that may exist at once
   int max_contact_generators = 256;  // capacity: λ variables in all
   double contact_stiffness = 100.0;  // Baumgarte gains of the no-slip constraints
   double contact_damping = 20.0;
-  double regularisation = 1e-6;   // weight on ‖q̈‖² and ‖λ‖² keeping the Hessian definite
+  double regularisation = 1e-6;  // weight on ‖q̈‖² and ‖λ‖² keeping the Hessian definite
   Source source;
 };
 

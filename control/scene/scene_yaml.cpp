@@ -82,8 +82,7 @@ Eigen::Matrix3d readInertia(const Reader& r, const YAML::Node& n, const std::str
   return I;
 }
 
-std::map<std::string, SpringSpec> readSprings(const Reader& r, const YAML::Node& n,
-                                              const std::string& path) {
+std::map<std::string, SpringSpec> readSprings(const Reader& r, const YAML::Node& n, const std::string& path) {
   std::map<std::string, SpringSpec> out;
   for (const Entry& e : r.entries(n, path)) {
     const Map m(r, e.value, child(path, e.key), {"stiffness", "damping", "offset"});
@@ -113,8 +112,7 @@ void readActuation(const Map& m, EntitySpec* e) {
   if (const YAML::Node* p = m.find("passive")) {
     e->passive_joints = r.names(*p, m.at("passive"));
     for (const std::string& j : e->passive_joints) {
-      if (std::find(e->actuated_joints.begin(), e->actuated_joints.end(), j) !=
-          e->actuated_joints.end()) {
+      if (std::find(e->actuated_joints.begin(), e->actuated_joints.end(), j) != e->actuated_joints.end()) {
         r.fail(*p, m.at("passive"), "joint '" + j + "' is also listed in 'actuated'");
       }
     }
@@ -123,8 +121,8 @@ void readActuation(const Map& m, EntitySpec* e) {
 
 EntitySpec readEntity(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"name", "model", "pose", "q", "actuation", "actuated", "passive", "springs", "mass",
-               "com", "inertia"});
+              {"name", "model", "pose", "q", "actuation", "actuated", "passive", "springs", "mass", "com",
+               "inertia"});
   EntitySpec e;
   e.source = m.source();
   e.name = m.name("name");
@@ -180,8 +178,7 @@ void readOther(const Reader& r, const YAML::Node& n, const std::string& path, Co
   }
 }
 
-std::vector<Eigen::Vector3d> readPoints(const Reader& r, const YAML::Node& n,
-                                        const std::string& path) {
+std::vector<Eigen::Vector3d> readPoints(const Reader& r, const YAML::Node& n, const std::string& path) {
   if (!n.IsSequence() || n.size() < 1 || n.size() > 8) {
     r.fail(n, path, "expected a list of 1 to 8 points, got " + describe(n));
   }
@@ -194,8 +191,7 @@ std::vector<Eigen::Vector3d> readPoints(const Reader& r, const YAML::Node& n,
 
 ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"name", "entity", "frame", "other", "points", "normal", "friction", "generators",
-               "active"});
+              {"name", "entity", "frame", "other", "points", "normal", "friction", "generators", "active"});
   ContactSpec c;
   c.source = m.source();
   c.name = m.name("name");
@@ -219,8 +215,7 @@ ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string&
 // ---- tasks -------------------------------------------------------------------------------------
 
 bool taskUsesKey(const TaskKindEntry& k, const std::string& key) {
-  static const char* const common[] = {"name", "type", "weight", "stiffness", "damping", "dims",
-                                       "active"};
+  static const char* const common[] = {"name", "type", "weight", "stiffness", "damping", "dims", "active"};
   const auto is = [&](const char* c) { return c != nullptr && key == c; };
   return std::any_of(std::begin(common), std::end(common), is) ||
          std::any_of(k.keys.begin(), k.keys.end(), is);
@@ -239,8 +234,9 @@ std::vector<int> readDims(const Reader& r, const YAML::Node& n, const std::strin
   const std::vector<YAML::Node> items = r.list(n, path);
   const int count = static_cast<int>(items.size());
   if (k.size >= 0 && count != k.size) {
-    r.fail(n, path, "expected " + std::to_string(k.size) + " entries for a " + k.name +
-                        " task, got " + std::to_string(count));
+    r.fail(n, path,
+           "expected " + std::to_string(k.size) + " entries for a " + k.name + " task, got " +
+               std::to_string(count));
   }
   if (count == 0 && !k.dims_may_be_empty) {
     r.fail(n, path, "expected at least one entry");
@@ -252,8 +248,8 @@ std::vector<int> readDims(const Reader& r, const YAML::Node& n, const std::strin
   return dims;
 }
 
-void readTarget(const Reader& r, const YAML::Node& n, const std::string& path,
-                const TaskKindEntry& k, TaskSpec* t) {
+void readTarget(const Reader& r, const YAML::Node& n, const std::string& path, const TaskKindEntry& k,
+                TaskSpec* t) {
   if (k.read_target != nullptr) {
     k.read_target(r, n, path, t);
   } else {
@@ -263,8 +259,8 @@ void readTarget(const Reader& r, const YAML::Node& n, const std::string& path,
 
 TaskSpec readTask(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"name", "type", "entity", "entities", "frame", "point", "joint", "contact",
-               "weight", "stiffness", "damping", "dims", "target", "active"});
+              {"name", "type", "entity", "entities", "frame", "point", "joint", "contact", "weight",
+               "stiffness", "damping", "dims", "target", "active"});
   TaskSpec t;
   t.source = m.source();
   t.name = m.name("name");
@@ -298,8 +294,8 @@ YAML::Node fieldOf(const YAML::Node& map, const char* key) { return map[key]; }
 /// Reads every item of the top-level list `key` with `read`; `unique` (may be null) names the
 /// field of each item that must be distinct, and `what` describes it in the message.
 template <class Spec, class Read, class KeyOf>
-std::vector<Spec> readList(const Reader& r, const Map& top, const char* key, Read read,
-                           const char* unique, const char* what, KeyOf keyOf) {
+std::vector<Spec> readList(const Reader& r, const Map& top, const char* key, Read read, const char* unique,
+                           const char* what, KeyOf keyOf) {
   std::vector<Spec> out;
   const YAML::Node* n = top.find(key);
   if (n == nullptr) {
@@ -376,8 +372,6 @@ SceneSpec loadSceneString(const std::string& text, const std::string& file_name_
   }
 }
 
-SceneSpec loadSceneFile(const std::string& path) {
-  return loadSceneString(readTextFile(path), path);
-}
+SceneSpec loadSceneFile(const std::string& path) { return loadSceneString(readTextFile(path), path); }
 
 }  // namespace mrqp::scene

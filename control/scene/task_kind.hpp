@@ -35,7 +35,8 @@ struct TaskKindEntry {
   void (*read_target)(const Reader& r, const YAML::Node& n, const std::string& path, TaskSpec* t);
   /// Builds the task (names resolved through `ctx`, errors at `field`); the caller then sets the
   /// weight and the gains and adds it to the problem.
-  std::unique_ptr<problem::Task> (*make)(const TaskSpec& t, const BuildContext& ctx, const std::string& field);
+  std::unique_ptr<problem::Task> (*make)(const TaskSpec& t, const BuildContext& ctx,
+                                         const std::string& field);
 };
 
 /// The registry: every task kind, in the order error messages list them.

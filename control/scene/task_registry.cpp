@@ -19,21 +19,16 @@ TaskKindEntry forceMinKind();
 
 const std::vector<TaskKindEntry>& taskKinds() {
   static const std::vector<TaskKindEntry> kinds = {
-      postureKind(),
-      comKind(),
-      framePositionKind(),
-      frameOrientationKind(),
-      framePoseKind(),
-      jointKind(),
-      forceKind(),
-      forceMinKind(),
+      postureKind(),   comKind(),   framePositionKind(), frameOrientationKind(),
+      framePoseKind(), jointKind(), forceKind(),         forceMinKind(),
   };
   return kinds;
 }
 
 const TaskKindEntry* findTaskKind(const std::string& name) {
   const auto& kinds = taskKinds();
-  const auto it = std::find_if(kinds.begin(), kinds.end(), [&](const TaskKindEntry& k) { return name == k.name; });
+  const auto it =
+      std::find_if(kinds.begin(), kinds.end(), [&](const TaskKindEntry& k) { return name == k.name; });
   return it == kinds.end() ? nullptr : &*it;
 }
 
@@ -51,7 +46,8 @@ void readEntitySubject(const Map& m, TaskSpec* t) { t->entities.push_back(m.name
 
 int taskEntity(const TaskSpec& t, const BuildContext& ctx, const std::string& field) {
   if (t.entities.empty()) BuildContext::fail(t.source, field + ".entity", "missing");
-  if (t.entities.size() > 1) BuildContext::fail(t.source, field + ".entities", "only a CoM task takes a group");
+  if (t.entities.size() > 1)
+    BuildContext::fail(t.source, field + ".entities", "only a CoM task takes a group");
   return ctx.entity(t.entities[0], t.source, field + ".entity");
 }
 

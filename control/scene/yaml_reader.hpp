@@ -125,8 +125,7 @@ class Reader {
     throw SceneError(file_ + ":" + std::to_string(line) + ": " +
                      (field.empty() ? std::string("(top level)") : field) + ": " + message);
   }
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& field,
-                         const std::string& message) const {
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& field, const std::string& message) const {
     fail(lineOf(at), field, message);
   }
 
@@ -157,8 +156,7 @@ class Reader {
     if (n.IsScalar()) {
       try {
         return n.as<bool>();
-      } catch (const YAML::Exception&) {
-      }
+      } catch (const YAML::Exception&) {}
     }
     fail(n, field, "expected true or false, got " + describe(n));
   }
@@ -172,8 +170,9 @@ class Reader {
 
   Eigen::VectorXd numbers(const YAML::Node& n, const std::string& field, int size) const {
     if (!n.IsSequence() || static_cast<int>(n.size()) != size) {
-      fail(n, field, "expected a list of " + std::to_string(size) + (size == 1 ? " number" : " numbers") +
-                         ", got " + describe(n));
+      fail(n, field,
+           "expected a list of " + std::to_string(size) + (size == 1 ? " number" : " numbers") + ", got " +
+               describe(n));
     }
     Eigen::VectorXd v(size);
     for (int i = 0; i < size; ++i) {
@@ -182,9 +181,7 @@ class Reader {
     return v;
   }
 
-  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& field) const {
-    return numbers(n, field, 3);
-  }
+  Eigen::Vector3d vec3(const YAML::Node& n, const std::string& field) const { return numbers(n, field, 3); }
 
   /// The items of a list; null reads as an empty list.
   std::vector<YAML::Node> list(const YAML::Node& n, const std::string& field) const {
@@ -348,8 +345,8 @@ class UniqueNames {
   void add(const std::string& name, const YAML::Node& at, const std::string& field) {
     const auto [it, inserted] = lines_.emplace(name, lineOf(at));
     if (!inserted) {
-      r_.fail(at, field, "duplicate " + what_ + " '" + name + "' (first at line " +
-                             std::to_string(it->second) + ")");
+      r_.fail(at, field,
+              "duplicate " + what_ + " '" + name + "' (first at line " + std::to_string(it->second) + ")");
     }
   }
 

@@ -11,40 +11,43 @@ namespace mrqp::drivers {
 
 namespace {
 
-bool is_fault_state(mrqp_fw_cia402_state s) noexcept
-{
-  return s == MRQP_FW_CIA402_FAULT || s == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE || s == MRQP_FW_CIA402_UNKNOWN;
+bool is_fault_state(mrqp_fw_cia402_state s) noexcept {
+  return s == MRQP_FW_CIA402_FAULT || s == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE ||
+         s == MRQP_FW_CIA402_UNKNOWN;
 }
 
-bool reached(mrqp_fw_cia402_state target, mrqp_fw_cia402_state s) noexcept
-{
+bool reached(mrqp_fw_cia402_state target, mrqp_fw_cia402_state s) noexcept {
   switch (target) {
-  case MRQP_FW_CIA402_SWITCH_ON_DISABLED:
-    return s == MRQP_FW_CIA402_SWITCH_ON_DISABLED || s == MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
-  case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
-    return s == MRQP_FW_CIA402_QUICK_STOP_ACTIVE || s == MRQP_FW_CIA402_SWITCH_ON_DISABLED;
-  default:
-    return s == target;
+    case MRQP_FW_CIA402_SWITCH_ON_DISABLED:
+      return s == MRQP_FW_CIA402_SWITCH_ON_DISABLED || s == MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
+    case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
+      return s == MRQP_FW_CIA402_QUICK_STOP_ACTIVE || s == MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+    default:
+      return s == target;
   }
 }
 
 }  // namespace
 
-const char* arm_phase_str(ArmPhase phase) noexcept
-{
+const char* arm_phase_str(ArmPhase phase) noexcept {
   switch (phase) {
-  case ArmPhase::Idle: return "idle";
-  case ArmPhase::Resetting: return "resetting";
-  case ArmPhase::Configuring: return "configuring";
-  case ArmPhase::Starting: return "starting";
-  case ArmPhase::Running: return "running";
-  case ArmPhase::Failed: return "failed";
+    case ArmPhase::Idle:
+      return "idle";
+    case ArmPhase::Resetting:
+      return "resetting";
+    case ArmPhase::Configuring:
+      return "configuring";
+    case ArmPhase::Starting:
+      return "starting";
+    case ArmPhase::Running:
+      return "running";
+    case ArmPhase::Failed:
+      return "failed";
   }
   return "unknown";
 }
 
-bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept
-{
+bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept {
   const SendResult r = routers_.router(slot).bus().send(f);
   if (r == SendResult::Ok) {
     return true;
@@ -56,21 +59,18 @@ bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcep
   return false;
 }
 
-void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept
-{
+void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept {
   d.pending = f;
   d.has_pending = true;
 }
 
-void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept
-{
+void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept {
   d.events |= flags;
   d.sticky |= flags;
   phase_ = ArmPhase::Failed;
 }
 
-void ArmDriver::start(TimeNs now) noexcept
-{
+void ArmDriver::start(TimeNs now) noexcept {
   phase_ = config_.reset == NmtReset::None ? ArmPhase::Configuring : ArmPhase::Resetting;
   phase_since_ = now;
   master_heartbeat_.restart(now);
@@ -101,8 +101,7 @@ void ArmDriver::start(TimeNs now) noexcept
   }
 }
 
-void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept
-{
+void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept {
   for (Drive& d : drives_) {
     d.target = target;
     d.target_since = now;
@@ -111,23 +110,13 @@ void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept
   }
 }
 
-void ArmDriver::request_enable(TimeNs now) noexcept
-{
-  set_target(MRQP_FW_CIA402_OPERATION_ENABLED, now);
-}
+void ArmDriver::request_enable(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_OPERATION_ENABLED, now); }
 
-void ArmDriver::request_disable(TimeNs now) noexcept
-{
-  set_target(MRQP_FW_CIA402_SWITCH_ON_DISABLED, now);
-}
+void ArmDriver::request_disable(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_SWITCH_ON_DISABLED, now); }
 
-void ArmDriver::request_quick_stop(TimeNs now) noexcept
-{
-  set_target(MRQP_FW_CIA402_QUICK_STOP_ACTIVE, now);
-}
+void ArmDriver::request_quick_stop(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_QUICK_STOP_ACTIVE, now); }
 
-bool ArmDriver::all_enabled() const noexcept
-{
+bool ArmDriver::all_enabled() const noexcept {
   for (const Drive& d : drives_) {
     if (!d.state.valid || d.state.state != MRQP_FW_CIA402_OPERATION_ENABLED) {
       return false;
@@ -136,8 +125,7 @@ bool ArmDriver::all_enabled() const noexcept
   return !drives_.empty();
 }
 
-bool ArmDriver::all_disabled() const noexcept
-{
+bool ArmDriver::all_disabled() const noexcept {
   for (const Drive& d : drives_) {
     if (!d.state.valid || !reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
       return false;
@@ -146,8 +134,7 @@ bool ArmDriver::all_disabled() const noexcept
   return !drives_.empty();
 }
 
-SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept
-{
+SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -168,8 +155,7 @@ SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept
   return SetpointResult::Ok;
 }
 
-SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept
-{
+SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -190,13 +176,12 @@ SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept
   return SetpointResult::Ok;
 }
 
-JointMode ArmDriver::joint_mode(std::size_t i) const noexcept
-{
-  return i < drives_.size() && drives_[i].cfg.mode == MRQP_FW_MODE_CST ? JointMode::Torque : JointMode::Position;
+JointMode ArmDriver::joint_mode(std::size_t i) const noexcept {
+  return i < drives_.size() && drives_[i].cfg.mode == MRQP_FW_MODE_CST ? JointMode::Torque
+                                                                       : JointMode::Position;
 }
 
-SetpointResult ArmDriver::set_joint(std::size_t i, const JointCommand& c) noexcept
-{
+SetpointResult ArmDriver::set_joint(std::size_t i, const JointCommand& c) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -209,8 +194,7 @@ SetpointResult ArmDriver::set_joint(std::size_t i, const JointCommand& c) noexce
   return static_cast<std::uint8_t>(p) >= static_cast<std::uint8_t>(t) ? p : t;
 }
 
-JointFeedback ArmDriver::joint(std::size_t i) const noexcept
-{
+JointFeedback ArmDriver::joint(std::size_t i) const noexcept {
   JointFeedback out;
   if (i >= drives_.size()) {
     return out;
@@ -225,8 +209,7 @@ JointFeedback ArmDriver::joint(std::size_t i) const noexcept
   return out;
 }
 
-const FaultReport& ArmDriver::update(TimeNs now) noexcept
-{
+const FaultReport& ArmDriver::update(TimeNs now) noexcept {
   routers_.start_cycle();
 
   // Boot progression.
@@ -319,7 +302,8 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
         }
         d.prev_state = s;
       }
-      if (!(d.state.valid && reached(d.target, d.state.state)) && now - d.target_since > config_.enable_timeout) {
+      if (!(d.state.valid && reached(d.target, d.state.state)) &&
+          now - d.target_since > config_.enable_timeout) {
         flags |= fault::kTimeout;
       }
     }
@@ -329,8 +313,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept
   return routers_.publish();
 }
 
-std::size_t ArmDriver::transmit(TimeNs now) noexcept
-{
+std::size_t ArmDriver::transmit(TimeNs now) noexcept {
   std::size_t count = 0;
   // One-shot frames (NMT, SDO) first; kept for the next cycle when the queue is full.
   for (Drive& d : drives_) {
@@ -347,96 +330,99 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
   }
 
   switch (phase_) {
-  case ArmPhase::Configuring:
-    for (Drive& d : drives_) {
-      if (d.sdo.done() || d.sdo.busy() || d.has_pending) {
-        continue;
-      }
-      mrqp_fw_frame out;
-      if (d.sdo.process(now, true, &out) != SdoWriteSequence::Step::Send) {
-        fail_boot(d, fault::kBootFailed);
-        continue;
-      }
-      if (send(d.cfg.bus, &d, out)) {
-        ++count;
-      } else {
-        set_pending(d, out);
-      }
-    }
-    break;
-  case ArmPhase::Starting: {
-    bool all_sent = true;
-    for (const Drive& d : drives_) {
-      all_sent = all_sent && !d.has_pending;
-    }
-    if (all_sent) {
-      phase_ = ArmPhase::Running;
-      phase_since_ = now;
+    case ArmPhase::Configuring:
       for (Drive& d : drives_) {
-        d.target_since = now;
-        d.prev_state = MRQP_FW_CIA402_UNKNOWN;
-      }
-    }
-    break;
-  }
-  case ArmPhase::Running:
-    for (std::size_t s = 0; s < buses_.size(); ++s) {
-      BusSlot& slot = buses_[s];
-      if (!slot.has_drives) {
-        continue;
-      }
-      for (Drive& d : drives_) {
-        if (d.cfg.bus != s) {
+        if (d.sdo.done() || d.sdo.busy() || d.has_pending) {
           continue;
         }
-        const mrqp_fw_cia402_state current = d.state.valid ? d.state.state : MRQP_FW_CIA402_UNKNOWN;
-        // A drive in Fault is only reset when the caller asks for Operation enabled again.
-        const std::uint16_t cw = is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
-                                     ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
-                                     : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
-        const bool enabled = current == MRQP_FW_CIA402_OPERATION_ENABLED && d.target == MRQP_FW_CIA402_OPERATION_ENABLED;
-        // Not enabled, or no setpoint yet: hold the measured position (raw increments), no torque.
-        std::int32_t position_inc = d.state.position_inc;
-        std::int16_t torque_permille = 0;
-        bool limited = false;
-        if (enabled && d.sp_position_valid && d.cfg.mode == MRQP_FW_MODE_CSP) {
-          limited = mrqp_fw_arm_position_to_inc(&d.cfg.scale, d.sp_position, &position_inc) != MRQP_FW_CONV_OK;
+        mrqp_fw_frame out;
+        if (d.sdo.process(now, true, &out) != SdoWriteSequence::Step::Send) {
+          fail_boot(d, fault::kBootFailed);
+          continue;
         }
-        if (enabled && d.sp_torque_valid) {
-          limited = limited ||
-                    mrqp_fw_arm_torque_to_permille(&d.cfg.scale, d.sp_torque, &torque_permille) != MRQP_FW_CONV_OK;
-        }
-        mrqp_fw_frame f;
-        const mrqp_fw_arm_rpdo1 raw{cw, position_inc, torque_permille};
-        const mrqp_fw_pack_flags pf = mrqp_fw_arm_pack_rpdo1(d.cfg.node, &raw, &f);
-        if (mrqp_fw_pack_failed(pf)) {
-          continue;  // cannot happen: node validated at construction
-        }
-        if (limited) {
-          ++d.faults.limited_setpoints;
-          d.events |= fault::kSetpointLimited;
-        }
-        d.state.controlword = cw;
-        if (send(s, &d, f)) {
+        if (send(d.cfg.bus, &d, out)) {
           ++count;
+        } else {
+          set_pending(d, out);
         }
       }
-      if (config_.produce_sync) {
-        mrqp_fw_frame f;
-        slot.sync.process(now, &f);
-        if (send(s, nullptr, f)) {
-          ++count;
+      break;
+    case ArmPhase::Starting: {
+      bool all_sent = true;
+      for (const Drive& d : drives_) {
+        all_sent = all_sent && !d.has_pending;
+      }
+      if (all_sent) {
+        phase_ = ArmPhase::Running;
+        phase_since_ = now;
+        for (Drive& d : drives_) {
+          d.target_since = now;
+          d.prev_state = MRQP_FW_CIA402_UNKNOWN;
         }
       }
-      // Feedback is expected from now on, even if the SYNC could not be queued (a full queue
-      // then shows up as missing feedback, not as silence).
-      slot.cyclic_sent = true;
+      break;
     }
-    break;
-  case ArmPhase::Idle:
-  case ArmPhase::Resetting:
-  case ArmPhase::Failed:
-    break;
+    case ArmPhase::Running:
+      for (std::size_t s = 0; s < buses_.size(); ++s) {
+        BusSlot& slot = buses_[s];
+        if (!slot.has_drives) {
+          continue;
+        }
+        for (Drive& d : drives_) {
+          if (d.cfg.bus != s) {
+            continue;
+          }
+          const mrqp_fw_cia402_state current = d.state.valid ? d.state.state : MRQP_FW_CIA402_UNKNOWN;
+          // A drive in Fault is only reset when the caller asks for Operation enabled again.
+          const std::uint16_t cw =
+              is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
+                  ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
+                  : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
+          const bool enabled =
+              current == MRQP_FW_CIA402_OPERATION_ENABLED && d.target == MRQP_FW_CIA402_OPERATION_ENABLED;
+          // Not enabled, or no setpoint yet: hold the measured position (raw increments), no torque.
+          std::int32_t position_inc = d.state.position_inc;
+          std::int16_t torque_permille = 0;
+          bool limited = false;
+          if (enabled && d.sp_position_valid && d.cfg.mode == MRQP_FW_MODE_CSP) {
+            limited =
+                mrqp_fw_arm_position_to_inc(&d.cfg.scale, d.sp_position, &position_inc) != MRQP_FW_CONV_OK;
+          }
+          if (enabled && d.sp_torque_valid) {
+            limited = limited || mrqp_fw_arm_torque_to_permille(&d.cfg.scale, d.sp_torque,
+                                                                &torque_permille) != MRQP_FW_CONV_OK;
+          }
+          mrqp_fw_frame f;
+          const mrqp_fw_arm_rpdo1 raw{cw, position_inc, torque_permille};
+          const mrqp_fw_pack_flags pf = mrqp_fw_arm_pack_rpdo1(d.cfg.node, &raw, &f);
+          if (mrqp_fw_pack_failed(pf)) {
+            continue;  // cannot happen: node validated at construction
+          }
+          if (limited) {
+            ++d.faults.limited_setpoints;
+            d.events |= fault::kSetpointLimited;
+          }
+          d.state.controlword = cw;
+          if (send(s, &d, f)) {
+            ++count;
+          }
+        }
+        if (config_.produce_sync) {
+          mrqp_fw_frame f;
+          slot.sync.process(now, &f);
+          if (send(s, nullptr, f)) {
+            ++count;
+          }
+        }
+        // Feedback is expected from now on, even if the SYNC could not be queued (a full queue
+        // then shows up as missing feedback, not as silence).
+        slot.cyclic_sent = true;
+      }
+      break;
+    case ArmPhase::Idle:
+    case ArmPhase::Resetting:
+    case ArmPhase::Failed:
+      break;
   }
 
   mrqp_fw_frame hb;
@@ -450,40 +436,38 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept
   return count;
 }
 
-Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept
-{
+Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept {
   mrqp_fw_frame out;
   switch (d.sdo.on_frame(f, &out)) {
-  case SdoWriteSequence::Step::Done:
-    return Claim::Accepted;
-  case SdoWriteSequence::Step::Send:
-    set_pending(d, out);
-    return Claim::Accepted;
-  case SdoWriteSequence::Step::Failed:
-    d.faults.sdo_abort_code = d.sdo.abort_code();
-    d.faults.sdo_index = d.sdo.current().index;
-    d.faults.sdo_subindex = d.sdo.current().subindex;
-    fail_boot(d, fault::kBootFailed);
-    return Claim::Accepted;
-  case SdoWriteSequence::Step::FailedSend:
-    set_pending(d, out);
-    d.faults.sdo_abort_code = d.sdo.abort_code();
-    d.faults.sdo_index = d.sdo.current().index;
-    d.faults.sdo_subindex = d.sdo.current().subindex;
-    ++d.faults.corrupt_frames;
-    fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
-    return Claim::Rejected;
-  case SdoWriteSequence::Step::Idle:
-  case SdoWriteSequence::Step::Unexpected:
-    break;
+    case SdoWriteSequence::Step::Done:
+      return Claim::Accepted;
+    case SdoWriteSequence::Step::Send:
+      set_pending(d, out);
+      return Claim::Accepted;
+    case SdoWriteSequence::Step::Failed:
+      d.faults.sdo_abort_code = d.sdo.abort_code();
+      d.faults.sdo_index = d.sdo.current().index;
+      d.faults.sdo_subindex = d.sdo.current().subindex;
+      fail_boot(d, fault::kBootFailed);
+      return Claim::Accepted;
+    case SdoWriteSequence::Step::FailedSend:
+      set_pending(d, out);
+      d.faults.sdo_abort_code = d.sdo.abort_code();
+      d.faults.sdo_index = d.sdo.current().index;
+      d.faults.sdo_subindex = d.sdo.current().subindex;
+      ++d.faults.corrupt_frames;
+      fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
+      return Claim::Rejected;
+    case SdoWriteSequence::Step::Idle:
+    case SdoWriteSequence::Step::Unexpected:
+      break;
   }
   ++d.faults.corrupt_frames;
   d.events |= fault::kCorruptFrame;
   return Claim::Rejected;
 }
 
-void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept
-{
+void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept {
   mrqp_fw_arm_tpdo1 p;
   if (mrqp_fw_arm_unpack_tpdo1(&f, d.cfg.node, &p) != MRQP_FW_OK) {
     ++d.faults.corrupt_frames;
@@ -512,8 +496,7 @@ void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcep
   d.last_claim = Claim::Accepted;
 }
 
-void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept
-{
+void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept {
   mrqp_fw_arm_tpdo2 p;
   if (mrqp_fw_arm_unpack_tpdo2(&f, d.cfg.node, &p) != MRQP_FW_OK) {
     ++d.faults.corrupt_frames;
@@ -534,8 +517,7 @@ void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept
   d.last_claim = Claim::Accepted;
 }
 
-void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs) noexcept
-{
+void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs) noexcept {
   const int slot = routers_.slot_of(from);
   if (slot < 0 || phase_ != ArmPhase::Resetting || rx.frame.id != MRQP_FW_COB_NMT ||
       (rx.frame.flags & MRQP_FW_FRAME_EXT) != 0u) {
@@ -548,8 +530,7 @@ void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs) n
   }
 }
 
-Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-{
+Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
@@ -567,47 +548,47 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
   Drive& d = drives_[static_cast<std::size_t>(index)];
   const TimeNs t = detail::rx_time(rx, now);
   switch (kind) {
-  case MRQP_FW_COB_KIND_HEARTBEAT: {
-    std::uint8_t n = 0;
-    mrqp_fw_nmt_state st;
-    if (mrqp_fw_heartbeat_unpack(&f, &n, &st) != MRQP_FW_OK) {
-      break;
-    }
-    d.state.nmt_state = static_cast<std::uint8_t>(st);
-    d.heartbeat.on_heartbeat(st, t);
-    if (st == MRQP_FW_NMT_STATE_BOOTUP) {
-      if (phase_ == ArmPhase::Resetting) {
-        (void)d.nmt.on_boot_up(t);
-      } else if (phase_ != ArmPhase::Idle && phase_ != ArmPhase::Failed) {
-        d.events |= fault::kStateMismatch;  // the drive rebooted on its own
+    case MRQP_FW_COB_KIND_HEARTBEAT: {
+      std::uint8_t n = 0;
+      mrqp_fw_nmt_state st;
+      if (mrqp_fw_heartbeat_unpack(&f, &n, &st) != MRQP_FW_OK) {
+        break;
       }
+      d.state.nmt_state = static_cast<std::uint8_t>(st);
+      d.heartbeat.on_heartbeat(st, t);
+      if (st == MRQP_FW_NMT_STATE_BOOTUP) {
+        if (phase_ == ArmPhase::Resetting) {
+          (void)d.nmt.on_boot_up(t);
+        } else if (phase_ != ArmPhase::Idle && phase_ != ArmPhase::Failed) {
+          d.events |= fault::kStateMismatch;  // the drive rebooted on its own
+        }
+      }
+      return Claim::Accepted;
     }
-    return Claim::Accepted;
-  }
-  case MRQP_FW_COB_KIND_EMCY: {
-    std::uint8_t n = 0;
-    mrqp_fw_emcy e;
-    if (mrqp_fw_emcy_unpack(&f, &n, &e) != MRQP_FW_OK) {
-      break;
+    case MRQP_FW_COB_KIND_EMCY: {
+      std::uint8_t n = 0;
+      mrqp_fw_emcy e;
+      if (mrqp_fw_emcy_unpack(&f, &n, &e) != MRQP_FW_OK) {
+        break;
+      }
+      ++d.faults.emcy_count;
+      d.faults.emcy_code = e.error_code;
+      d.faults.emcy_register = e.error_register;
+      if (e.error_code != 0u) {
+        d.events |= fault::kEmcy;
+      }
+      return Claim::Accepted;
     }
-    ++d.faults.emcy_count;
-    d.faults.emcy_code = e.error_code;
-    d.faults.emcy_register = e.error_register;
-    if (e.error_code != 0u) {
-      d.events |= fault::kEmcy;
-    }
-    return Claim::Accepted;
-  }
-  case MRQP_FW_COB_KIND_TPDO1:
-    decode_tpdo1(d, f, t);
-    return d.last_claim;
-  case MRQP_FW_COB_KIND_TPDO2:
-    decode_tpdo2(d, f);
-    return d.last_claim;
-  case MRQP_FW_COB_KIND_SDO_TX:
-    return on_sdo(d, f);
-  default:
-    return Claim::NotMine;
+    case MRQP_FW_COB_KIND_TPDO1:
+      decode_tpdo1(d, f, t);
+      return d.last_claim;
+    case MRQP_FW_COB_KIND_TPDO2:
+      decode_tpdo2(d, f);
+      return d.last_claim;
+    case MRQP_FW_COB_KIND_SDO_TX:
+      return on_sdo(d, f);
+    default:
+      return Claim::NotMine;
   }
   ++d.faults.corrupt_frames;
   d.events |= fault::kCorruptFrame;

@@ -9,9 +9,7 @@
 
 namespace mrqp::drivers {
 
-
-std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
-{
+std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const {
   const unsigned n = drive.node;
   std::vector<SdoWrite> writes;
   auto w = [&writes](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value) {
@@ -34,10 +32,13 @@ std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
     bool enable;
   };
   const Pdo pdos[] = {
-      {MRQP_FW_OBJ_RPDO_COMM_BASE, MRQP_FW_OBJ_RPDO_MAP_BASE, mrqp_fw_cob_rpdo(1, n), MRQP_FW_ARM_RPDO1, true},
-      {MRQP_FW_OBJ_TPDO_COMM_BASE, MRQP_FW_OBJ_TPDO_MAP_BASE, mrqp_fw_cob_tpdo(1, n), MRQP_FW_ARM_TPDO1, true},
-      {static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 1u), static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_MAP_BASE + 1u),
-       mrqp_fw_cob_tpdo(2, n), MRQP_FW_ARM_TPDO2, config_.tpdo2},
+      {MRQP_FW_OBJ_RPDO_COMM_BASE, MRQP_FW_OBJ_RPDO_MAP_BASE, mrqp_fw_cob_rpdo(1, n), MRQP_FW_ARM_RPDO1,
+       true},
+      {MRQP_FW_OBJ_TPDO_COMM_BASE, MRQP_FW_OBJ_TPDO_MAP_BASE, mrqp_fw_cob_tpdo(1, n), MRQP_FW_ARM_TPDO1,
+       true},
+      {static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 1u),
+       static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_MAP_BASE + 1u), mrqp_fw_cob_tpdo(2, n), MRQP_FW_ARM_TPDO2,
+       config_.tpdo2},
   };
   for (const Pdo& p : pdos) {
     // CiA 301 order: disable the PDO, set the transmission type, clear the mapping, write the
@@ -64,8 +65,7 @@ std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
 }
 
 std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buses, const ArmConfig& config,
-                                             std::string* error)
-{
+                                             std::string* error) {
   auto fail = [error](const std::string& msg) {
     if (error != nullptr) {
       *error = "arm driver: " + msg;
@@ -167,8 +167,7 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
   return p;
 }
 
-void ArmDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
-{
+void ArmDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Drive& d : drives_) {
     n += d.cfg.bus == bus ? 1u : 0u;

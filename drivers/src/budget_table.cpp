@@ -10,15 +10,13 @@ namespace mrqp::drivers {
 
 namespace {
 
-std::string pct(double u)
-{
+std::string pct(double u) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.1f %%", 100.0 * u);
   return buf;
 }
 
-BusSpec spec_of(const BusKind& kind, double cycle_hz, double limit)
-{
+BusSpec spec_of(const BusKind& kind, double cycle_hz, double limit) {
   BusSpec s;
   s.name = kind.label;
   s.nominal_bps = kind.nominal_bps;
@@ -29,8 +27,7 @@ BusSpec spec_of(const BusKind& kind, double cycle_hz, double limit)
 }
 
 double arm_load(const RobotTraffic& robot, const BusKind& kind, double hz, double limit, std::uint32_t drives,
-                std::uint32_t ft)
-{
+                std::uint32_t ft) {
   BusBudget b(spec_of(kind, hz, limit));
   if (drives + ft > 0u) {
     b.add_sync();
@@ -47,8 +44,8 @@ double arm_load(const RobotTraffic& robot, const BusKind& kind, double hz, doubl
   return b.result().utilisation_worst;
 }
 
-double hand_load(const BusKind& kind, double hz, double limit, std::uint32_t mit, const std::vector<std::uint32_t>& boards)
-{
+double hand_load(const BusKind& kind, double hz, double limit, std::uint32_t mit,
+                 const std::vector<std::uint32_t>& boards) {
   BusBudget b(spec_of(kind, hz, limit));
   b.add_mit_motors(mit);
   for (std::uint32_t joints : boards) {
@@ -57,10 +54,7 @@ double hand_load(const BusKind& kind, double hz, double limit, std::uint32_t mit
   return b.result().utilisation_worst;
 }
 
-bool fits(double u, double limit)
-{
-  return u <= limit + 1e-12;
-}
+bool fits(double u, double limit) { return u <= limit + 1e-12; }
 
 struct ArmBus {
   std::uint32_t drives = 0;
@@ -72,8 +66,7 @@ struct HandBus {
   std::vector<std::uint32_t> boards;
 };
 
-std::string arm_content(std::uint32_t drives, std::uint32_t ft)
-{
+std::string arm_content(std::uint32_t drives, std::uint32_t ft) {
   std::string s;
   if (drives > 0u) {
     s += std::to_string(drives) + (drives == 1u ? " drive" : " drives");
@@ -84,8 +77,7 @@ std::string arm_content(std::uint32_t drives, std::uint32_t ft)
   return s;
 }
 
-std::string hand_content(const HandBus& h)
-{
+std::string hand_content(const HandBus& h) {
   if (h.mit > 0u) {
     return std::to_string(h.mit) + " MIT";
   }
@@ -98,8 +90,7 @@ std::string hand_content(const HandBus& h)
 
 }  // namespace
 
-BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit)
-{
+BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit) {
   BusPlan plan;
   const bool fd = kind.data_bps > 0u;
 
@@ -246,10 +237,10 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
 }
 
 std::string budget_table_markdown(const RobotTraffic& robot, const std::vector<BusKind>& kinds,
-                                  const std::vector<double>& rates_hz, double limit)
-{
+                                  const std::vector<double>& rates_hz, double limit) {
   std::string out =
-      "| cycle | bus | max drives per bus | arm buses (drives + F/T: worst-case load) | hand buses (worst-case "
+      "| cycle | bus | max drives per bus | arm buses (drives + F/T: worst-case load) | hand buses "
+      "(worst-case "
       "load) | buses |\n|---|---|---|---|---|---|\n";
   for (double hz : rates_hz) {
     for (const BusKind& kind : kinds) {
@@ -268,16 +259,16 @@ std::string budget_table_markdown(const RobotTraffic& robot, const std::vector<B
         std::string& cell = b.hand ? hand : arm;
         cell += (cell.empty() ? "" : "; ") + b.content + " (" + pct(b.utilisation_worst) + ")";
       }
-      out += std::to_string(plan.arm_buses) + ": " + arm + " | " + std::to_string(plan.hand_buses) + ": " + hand +
-             " | **" + std::to_string(plan.arm_buses + plan.hand_buses) + "** |\n";
+      out += std::to_string(plan.arm_buses) + ": " + arm + " | " + std::to_string(plan.hand_buses) + ": " +
+             hand + " | **" + std::to_string(plan.arm_buses + plan.hand_buses) + "** |\n";
     }
   }
   return out;
 }
 
-std::string reference_budget_tables()
-{
-  const std::vector<BusKind> kinds = {{"classic 1 Mbit/s", 1000000u, 0u}, {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}};
+std::string reference_budget_tables() {
+  const std::vector<BusKind> kinds = {{"classic 1 Mbit/s", 1000000u, 0u},
+                                      {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}};
   const std::vector<double> rates = {250.0, 500.0, 1000.0};
   RobotTraffic robot;
   std::string out = "With TPDO2 (velocity, error code and mode feedback every cycle):\n\n";

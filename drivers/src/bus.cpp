@@ -5,13 +5,16 @@ namespace mrqp::drivers {
 
 Bus::~Bus() = default;
 
-const char* bus_state_str(BusState state) noexcept
-{
+const char* bus_state_str(BusState state) noexcept {
   switch (state) {
-  case BusState::ErrorActive: return "error active";
-  case BusState::ErrorWarning: return "error warning";
-  case BusState::ErrorPassive: return "error passive";
-  case BusState::BusOff: return "bus-off";
+    case BusState::ErrorActive:
+      return "error active";
+    case BusState::ErrorWarning:
+      return "error warning";
+    case BusState::ErrorPassive:
+      return "error passive";
+    case BusState::BusOff:
+      return "bus-off";
   }
   return "unknown";
 }

@@ -5,8 +5,7 @@ namespace mrqp::drivers {
 
 namespace {
 
-std::uint32_t delta32(std::uint64_t now, std::uint64_t& base) noexcept
-{
+std::uint32_t delta32(std::uint64_t now, std::uint64_t& base) noexcept {
   const std::uint64_t d = now >= base ? now - base : 0u;
   base = now;
   return d > 0xFFFFFFFFu ? 0xFFFFFFFFu : static_cast<std::uint32_t>(d);
@@ -14,8 +13,7 @@ std::uint32_t delta32(std::uint64_t now, std::uint64_t& base) noexcept
 
 }  // namespace
 
-void BusHealth::reset(const BusRouter& router) noexcept
-{
+void BusHealth::reset(const BusRouter& router) noexcept {
   const RouterStats& r = router.stats();
   const BusStatus s = router.bus().status();
   base_error_events_ = r.error_events;
@@ -29,8 +27,7 @@ void BusHealth::reset(const BusRouter& router) noexcept
   faults_.rec = s.rec;
 }
 
-const BusFaults& BusHealth::update(const BusRouter& router) noexcept
-{
+const BusFaults& BusHealth::update(const BusRouter& router) noexcept {
   const RouterStats& r = router.stats();
   const BusStatus s = router.bus().status();
   BusFaults& f = faults_;

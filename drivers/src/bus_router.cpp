@@ -3,8 +3,7 @@
 
 namespace mrqp::drivers {
 
-bool BusRouter::add_handler(FrameHandler& handler) noexcept
-{
+bool BusRouter::add_handler(FrameHandler& handler) noexcept {
   for (std::size_t i = 0; i < handler_count_; ++i) {
     if (handlers_[i] == &handler) {
       return false;
@@ -17,8 +16,7 @@ bool BusRouter::add_handler(FrameHandler& handler) noexcept
   return true;
 }
 
-void BusRouter::remove_handler(FrameHandler& handler) noexcept
-{
+void BusRouter::remove_handler(FrameHandler& handler) noexcept {
   std::size_t out = 0;
   for (std::size_t i = 0; i < handler_count_; ++i) {
     if (handlers_[i] != &handler) {
@@ -31,8 +29,7 @@ void BusRouter::remove_handler(FrameHandler& handler) noexcept
   handler_count_ = out;
 }
 
-std::size_t BusRouter::poll(TimeNs now) noexcept
-{
+std::size_t BusRouter::poll(TimeNs now) noexcept {
   stats_.last_error_flags = 0;
   std::size_t n = 0;
   RxFrame rx{};
@@ -64,9 +61,15 @@ std::size_t BusRouter::poll(TimeNs now) noexcept
       claim = handlers_[i]->on_frame(*this, rx, now);
     }
     switch (claim) {
-    case Claim::NotMine: ++stats_.unknown; break;
-    case Claim::Accepted: ++stats_.accepted; break;
-    case Claim::Rejected: ++stats_.rejected; break;
+      case Claim::NotMine:
+        ++stats_.unknown;
+        break;
+      case Claim::Accepted:
+        ++stats_.accepted;
+        break;
+      case Claim::Rejected:
+        ++stats_.rejected;
+        break;
     }
   }
   ++stats_.polls_truncated;

@@ -3,35 +3,54 @@
 
 namespace mrqp::drivers {
 
-const char* fault_flag_name(std::uint32_t flag) noexcept
-{
+const char* fault_flag_name(std::uint32_t flag) noexcept {
   switch (flag) {
-  case fault::kHeartbeatLost: return "heartbeat lost";
-  case fault::kFeedbackMissing: return "feedback missing";
-  case fault::kEmcy: return "EMCY";
-  case fault::kDeviceFault: return "device fault";
-  case fault::kOutOfRange: return "value out of range";
-  case fault::kSetpointRefused: return "setpoint refused (NaN)";
-  case fault::kSetpointLimited: return "setpoint limited";
-  case fault::kCorruptFrame: return "corrupted frame";
-  case fault::kUnknownFrame: return "unknown frame";
-  case fault::kBusErrorFrames: return "bus error frames";
-  case fault::kBusErrorPassive: return "bus error passive";
-  case fault::kBusOff: return "bus-off";
-  case fault::kTxQueueFull: return "tx queue full";
-  case fault::kRxOverflow: return "rx overflow";
-  case fault::kStateMismatch: return "state mismatch";
-  case fault::kTimeout: return "timeout";
-  case fault::kBootFailed: return "boot failed";
-  case fault::kTornPair: return "torn pair";
-  case fault::kSampleLost: return "sample lost";
-  case fault::kDeviceWarning: return "device warning";
-  default: return "unknown";
+    case fault::kHeartbeatLost:
+      return "heartbeat lost";
+    case fault::kFeedbackMissing:
+      return "feedback missing";
+    case fault::kEmcy:
+      return "EMCY";
+    case fault::kDeviceFault:
+      return "device fault";
+    case fault::kOutOfRange:
+      return "value out of range";
+    case fault::kSetpointRefused:
+      return "setpoint refused (NaN)";
+    case fault::kSetpointLimited:
+      return "setpoint limited";
+    case fault::kCorruptFrame:
+      return "corrupted frame";
+    case fault::kUnknownFrame:
+      return "unknown frame";
+    case fault::kBusErrorFrames:
+      return "bus error frames";
+    case fault::kBusErrorPassive:
+      return "bus error passive";
+    case fault::kBusOff:
+      return "bus-off";
+    case fault::kTxQueueFull:
+      return "tx queue full";
+    case fault::kRxOverflow:
+      return "rx overflow";
+    case fault::kStateMismatch:
+      return "state mismatch";
+    case fault::kTimeout:
+      return "timeout";
+    case fault::kBootFailed:
+      return "boot failed";
+    case fault::kTornPair:
+      return "torn pair";
+    case fault::kSampleLost:
+      return "sample lost";
+    case fault::kDeviceWarning:
+      return "device warning";
+    default:
+      return "unknown";
   }
 }
 
-std::string fault_flags_str(std::uint32_t flags)
-{
+std::string fault_flags_str(std::uint32_t flags) {
   std::string out;
   for (std::uint32_t bit = 1; bit != 0u && bit <= fault::kLast; bit <<= 1) {
     if ((flags & bit) != 0u) {
@@ -44,8 +63,7 @@ std::string fault_flags_str(std::uint32_t flags)
   return out;
 }
 
-std::string describe_faults(const FaultReport& report, const char* what)
-{
+std::string describe_faults(const FaultReport& report, const char* what) {
   std::string out;
   for (std::size_t i = 0; i < report.device_count; ++i) {
     const DeviceFaults& d = report.devices[i];

@@ -5,8 +5,7 @@
 
 namespace mrqp::drivers {
 
-void FdHandDriver::request_enable(TimeNs now) noexcept
-{
+void FdHandDriver::request_enable(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = config_.enabled_mode;
     b.mode_since = now;
@@ -15,8 +14,7 @@ void FdHandDriver::request_enable(TimeNs now) noexcept
   }
 }
 
-void FdHandDriver::request_disable(TimeNs now) noexcept
-{
+void FdHandDriver::request_disable(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = MRQP_FW_HAND_MODE_DISABLED;
     b.mode_since = now;
@@ -25,8 +23,7 @@ void FdHandDriver::request_disable(TimeNs now) noexcept
   }
 }
 
-void FdHandDriver::request_quick_stop(TimeNs now) noexcept
-{
+void FdHandDriver::request_quick_stop(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = MRQP_FW_HAND_MODE_HOLD;
     b.mode_since = now;
@@ -35,8 +32,7 @@ void FdHandDriver::request_quick_stop(TimeNs now) noexcept
   }
 }
 
-bool FdHandDriver::locate(std::size_t flat, std::size_t* board, std::size_t* joint) const noexcept
-{
+bool FdHandDriver::locate(std::size_t flat, std::size_t* board, std::size_t* joint) const noexcept {
   for (std::size_t i = 0; i < boards_.size(); ++i) {
     const std::size_t n = boards_[i].cfg.joints;
     if (flat < n) {
@@ -49,13 +45,11 @@ bool FdHandDriver::locate(std::size_t flat, std::size_t* board, std::size_t* joi
   return false;
 }
 
-JointMode FdHandDriver::joint_mode(std::size_t) const noexcept
-{
+JointMode FdHandDriver::joint_mode(std::size_t) const noexcept {
   return config_.enabled_mode == MRQP_FW_HAND_MODE_TORQUE ? JointMode::Torque : JointMode::Position;
 }
 
-SetpointResult FdHandDriver::set_joint(std::size_t flat, const JointCommand& c) noexcept
-{
+SetpointResult FdHandDriver::set_joint(std::size_t flat, const JointCommand& c) noexcept {
   std::size_t board = 0;
   std::size_t j = 0;
   if (!locate(flat, &board, &j)) {
@@ -66,8 +60,7 @@ SetpointResult FdHandDriver::set_joint(std::size_t flat, const JointCommand& c) 
                    static_cast<float>(c.torque));
 }
 
-JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept
-{
+JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept {
   JointFeedback out;
   std::size_t board = 0;
   std::size_t j = 0;
@@ -84,8 +77,7 @@ JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept
   return out;
 }
 
-bool FdHandDriver::all_enabled() const noexcept
-{
+bool FdHandDriver::all_enabled() const noexcept {
   for (const Board& b : boards_) {
     if (!b.state.enabled) {
       return false;
@@ -95,8 +87,7 @@ bool FdHandDriver::all_enabled() const noexcept
 }
 
 SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, float position, float velocity,
-                                       float torque) noexcept
-{
+                                       float torque) noexcept {
   if (board >= boards_.size() || joint >= boards_[board].cfg.joints) {
     return SetpointResult::BadIndex;
   }
@@ -125,8 +116,7 @@ SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, flo
   return SetpointResult::Ok;
 }
 
-const FaultReport& FdHandDriver::update(TimeNs now) noexcept
-{
+const FaultReport& FdHandDriver::update(TimeNs now) noexcept {
   routers_.start_cycle();
   for (std::size_t i = 0; i < boards_.size(); ++i) {
     Board& b = boards_[i];
@@ -164,9 +154,9 @@ const FaultReport& FdHandDriver::update(TimeNs now) noexcept
       if (lag > config_.max_seq_lag) {
         flags |= fault::kStateMismatch;
       }
-      const bool confirmed = b.state.mode == b.mode_requested &&
-                             (b.mode_requested == MRQP_FW_HAND_MODE_DISABLED ||
-                              (st & MRQP_FW_HAND_STATUS_ENABLED) != 0u);
+      const bool confirmed =
+          b.state.mode == b.mode_requested &&
+          (b.mode_requested == MRQP_FW_HAND_MODE_DISABLED || (st & MRQP_FW_HAND_STATUS_ENABLED) != 0u);
       if (b.mode_requested != MRQP_FW_HAND_MODE_DISABLED) {
         if (confirmed) {
           b.state.enabled = true;
@@ -184,8 +174,7 @@ const FaultReport& FdHandDriver::update(TimeNs now) noexcept
   return routers_.publish();
 }
 
-std::size_t FdHandDriver::transmit(TimeNs) noexcept
-{
+std::size_t FdHandDriver::transmit(TimeNs) noexcept {
   std::size_t count = 0;
   for (Board& b : boards_) {
     ++b.state.seq;
@@ -197,7 +186,8 @@ std::size_t FdHandDriver::transmit(TimeNs) noexcept
       const std::uint32_t first = k * MRQP_FW_HAND_FD_MAX_JOINTS;
       const std::uint32_t left = b.cfg.joints - first;
       cmd.first_joint = static_cast<std::uint8_t>(first);
-      cmd.count = static_cast<std::uint8_t>(left > MRQP_FW_HAND_FD_MAX_JOINTS ? MRQP_FW_HAND_FD_MAX_JOINTS : left);
+      cmd.count =
+          static_cast<std::uint8_t>(left > MRQP_FW_HAND_FD_MAX_JOINTS ? MRQP_FW_HAND_FD_MAX_JOINTS : left);
       for (std::uint32_t j = 0; j < cmd.count; ++j) {
         const std::uint32_t joint = first + j;
         if (b.state.enabled && (b.sp_valid & (1u << joint)) != 0u) {
@@ -232,8 +222,7 @@ std::size_t FdHandDriver::transmit(TimeNs) noexcept
   return count;
 }
 
-Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-{
+Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u || f.id < MRQP_FW_HAND_FD_FB_ID_BASE ||

@@ -4,9 +4,8 @@
 
 namespace mrqp::drivers {
 
-std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
-                                                   std::string* error)
-{
+std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>& buses,
+                                                   const FdHandConfig& config, std::string* error) {
   auto fail = [error](const std::string& msg) {
     if (error != nullptr) {
       *error = "FD hand driver: " + msg;
@@ -71,8 +70,7 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
   return p;
 }
 
-void FdHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
-{
+void FdHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
   for (const Board& b : boards_) {
     if (b.cfg.bus == bus) {
       budget.add_hand_board(b.cfg.joints);

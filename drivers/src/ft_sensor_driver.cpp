@@ -7,8 +7,7 @@
 
 namespace mrqp::drivers {
 
-void FtSensorDriver::start(TimeNs) noexcept
-{
+void FtSensorDriver::start(TimeNs) noexcept {
   started_ = true;
   for (Sensor& s : sensors_) {
     s.faults.missed_cycles = 0;
@@ -16,8 +15,7 @@ void FtSensorDriver::start(TimeNs) noexcept
   }
 }
 
-bool FtSensorDriver::ready() const noexcept
-{
+bool FtSensorDriver::ready() const noexcept {
   if (!started_) {
     return false;
   }
@@ -29,8 +27,7 @@ bool FtSensorDriver::ready() const noexcept
   return true;
 }
 
-WrenchFeedback FtSensorDriver::wrench(std::size_t i) const noexcept
-{
+WrenchFeedback FtSensorDriver::wrench(std::size_t i) const noexcept {
   WrenchFeedback out;
   if (i >= sensors_.size()) {
     return out;
@@ -43,8 +40,7 @@ WrenchFeedback FtSensorDriver::wrench(std::size_t i) const noexcept
   return out;
 }
 
-bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept
-{
+bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept {
   if (i >= sensors_.size()) {
     return false;
   }
@@ -56,8 +52,7 @@ bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept
   return true;
 }
 
-void FtSensorDriver::publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept
-{
+void FtSensorDriver::publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept {
   FtSensorState& st = s.state;
   if (s.seq_valid) {
     const std::uint8_t expected = static_cast<std::uint8_t>(st.seq + 1u);
@@ -88,8 +83,7 @@ void FtSensorDriver::publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, 
   }
 }
 
-Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept
-{
+Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept {
   mrqp_fw_ft_half h;
   if (mrqp_fw_ft_unpack_half(&s.cfg.scale, &f, s.cfg.node, &h) != MRQP_FW_OK) {
     ++s.faults.corrupt_frames;
@@ -126,8 +120,7 @@ Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexc
   return Claim::Accepted;
 }
 
-Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-{
+Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
@@ -148,7 +141,8 @@ Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs 
     return on_half(s, f, t);
   }
   mrqp_fw_ft_sample sample;
-  if (kind != MRQP_FW_COB_KIND_TPDO1 || mrqp_fw_ft_unpack_fd(&s.cfg.scale, &f, s.cfg.node, &sample) != MRQP_FW_OK) {
+  if (kind != MRQP_FW_COB_KIND_TPDO1 ||
+      mrqp_fw_ft_unpack_fd(&s.cfg.scale, &f, s.cfg.node, &sample) != MRQP_FW_OK) {
     ++s.faults.corrupt_frames;
     s.events |= fault::kCorruptFrame;
     return Claim::Rejected;
@@ -157,8 +151,7 @@ Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs 
   return Claim::Accepted;
 }
 
-const FaultReport& FtSensorDriver::update(TimeNs now) noexcept
-{
+const FaultReport& FtSensorDriver::update(TimeNs now) noexcept {
   routers_.start_cycle();
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
@@ -204,15 +197,15 @@ const FaultReport& FtSensorDriver::update(TimeNs now) noexcept
   return routers_.publish();
 }
 
-std::size_t FtSensorDriver::transmit(TimeNs) noexcept
-{
+std::size_t FtSensorDriver::transmit(TimeNs) noexcept {
   std::size_t count = 0;
   for (Sensor& s : sensors_) {
     if (!s.tare_send) {
       continue;
     }
     mrqp_fw_frame f;
-    (void)mrqp_fw_ft_pack_tare(s.cfg.node, s.tare_value ? MRQP_FW_FT_CMD_TARE : MRQP_FW_FT_CMD_CLEAR_TARE, &f);
+    (void)mrqp_fw_ft_pack_tare(s.cfg.node, s.tare_value ? MRQP_FW_FT_CMD_TARE : MRQP_FW_FT_CMD_CLEAR_TARE,
+                               &f);
     const SendResult r = routers_.router(s.cfg.bus).bus().send(f);
     if (r == SendResult::Ok) {
       s.tare_send = false;

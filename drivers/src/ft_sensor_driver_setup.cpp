@@ -4,9 +4,8 @@
 
 namespace mrqp::drivers {
 
-std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRouter*>& buses, const FtConfig& config,
-                                                       std::string* error)
-{
+std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRouter*>& buses,
+                                                       const FtConfig& config, std::string* error) {
   auto fail = [error](const std::string& msg) {
     if (error != nullptr) {
       *error = "F/T sensor driver: " + msg;
@@ -66,8 +65,7 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
   return p;
 }
 
-void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
-{
+void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t classic = 0;
   std::uint32_t fd = 0;
   for (const Sensor& s : sensors_) {

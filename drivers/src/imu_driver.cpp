@@ -7,8 +7,7 @@
 
 namespace mrqp::drivers {
 
-void ImuDriver::start(TimeNs) noexcept
-{
+void ImuDriver::start(TimeNs) noexcept {
   started_ = true;
   for (Imu& m : imus_) {
     m.faults.missed_cycles = 0;
@@ -16,8 +15,7 @@ void ImuDriver::start(TimeNs) noexcept
   }
 }
 
-bool ImuDriver::ready() const noexcept
-{
+bool ImuDriver::ready() const noexcept {
   if (!started_) {
     return false;
   }
@@ -29,8 +27,7 @@ bool ImuDriver::ready() const noexcept
   return true;
 }
 
-ImuFeedback ImuDriver::imu(std::size_t i) const noexcept
-{
+ImuFeedback ImuDriver::imu(std::size_t i) const noexcept {
   ImuFeedback out;
   if (i >= imus_.size()) {
     return out;
@@ -45,8 +42,7 @@ ImuFeedback ImuDriver::imu(std::size_t i) const noexcept
   return out;
 }
 
-Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-{
+Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
@@ -96,8 +92,10 @@ Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
   }
   bool out = (sample.status & MRQP_FW_IMU_STATUS_OVERRANGE) != 0u;
   for (std::size_t k = 0; k < 3; ++k) {
-    out = out || sample.angular_velocity[k] < -m.cfg.rate_limit || sample.angular_velocity[k] > m.cfg.rate_limit;
-    out = out || sample.specific_force[k] < -m.cfg.force_limit || sample.specific_force[k] > m.cfg.force_limit;
+    out = out || sample.angular_velocity[k] < -m.cfg.rate_limit ||
+          sample.angular_velocity[k] > m.cfg.rate_limit;
+    out =
+        out || sample.specific_force[k] < -m.cfg.force_limit || sample.specific_force[k] > m.cfg.force_limit;
   }
   if (out) {
     ++m.faults.out_of_range;
@@ -106,8 +104,7 @@ Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
   return Claim::Accepted;
 }
 
-const FaultReport& ImuDriver::update(TimeNs) noexcept
-{
+const FaultReport& ImuDriver::update(TimeNs) noexcept {
   routers_.start_cycle();
   for (std::size_t i = 0; i < imus_.size(); ++i) {
     Imu& m = imus_[i];
@@ -126,7 +123,8 @@ const FaultReport& ImuDriver::update(TimeNs) noexcept
       if ((st & MRQP_FW_IMU_STATUS_FAULT) != 0u) {
         flags |= fault::kDeviceFault;
       }
-      if ((st & (MRQP_FW_IMU_STATUS_TEMPERATURE | MRQP_FW_IMU_STATUS_STALE | MRQP_FW_IMU_STATUS_ALIGNING)) != 0u) {
+      if ((st & (MRQP_FW_IMU_STATUS_TEMPERATURE | MRQP_FW_IMU_STATUS_STALE | MRQP_FW_IMU_STATUS_ALIGNING)) !=
+          0u) {
         flags |= fault::kDeviceWarning;
       }
     }
@@ -136,8 +134,7 @@ const FaultReport& ImuDriver::update(TimeNs) noexcept
   return routers_.publish();
 }
 
-std::size_t ImuDriver::transmit(TimeNs) noexcept
-{
+std::size_t ImuDriver::transmit(TimeNs) noexcept {
   std::size_t count = 0;
   if (!config_.produce_sync || !started_) {
     return count;

@@ -5,8 +5,7 @@
 namespace mrqp::drivers {
 
 std::unique_ptr<ImuDriver> ImuDriver::create(const std::vector<BusRouter*>& buses, const ImuConfig& config,
-                                             std::string* error)
-{
+                                             std::string* error) {
   auto fail = [error](const std::string& msg) {
     if (error != nullptr) {
       *error = "IMU driver: " + msg;
@@ -66,8 +65,7 @@ std::unique_ptr<ImuDriver> ImuDriver::create(const std::vector<BusRouter*>& buse
   return p;
 }
 
-void ImuDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
-{
+void ImuDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Imu& m : imus_) {
     n += m.cfg.bus == bus ? 1u : 0u;

@@ -5,8 +5,7 @@
 
 namespace mrqp::drivers {
 
-void MitHandDriver::request_enable(TimeNs now) noexcept
-{
+void MitHandDriver::request_enable(TimeNs now) noexcept {
   quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::On) {
@@ -18,8 +17,7 @@ void MitHandDriver::request_enable(TimeNs now) noexcept
   }
 }
 
-void MitHandDriver::request_disable(TimeNs now) noexcept
-{
+void MitHandDriver::request_disable(TimeNs now) noexcept {
   quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::Off) {
@@ -31,8 +29,7 @@ void MitHandDriver::request_disable(TimeNs now) noexcept
   }
 }
 
-void MitHandDriver::request_quick_stop(TimeNs) noexcept
-{
+void MitHandDriver::request_quick_stop(TimeNs) noexcept {
   quick_stop_ = true;
   for (Motor& m : motors_) {
     m.sp = mrqp_fw_mit_cmd{};
@@ -42,8 +39,7 @@ void MitHandDriver::request_quick_stop(TimeNs) noexcept
   }
 }
 
-SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) noexcept
-{
+SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) noexcept {
   if (i >= motors_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -57,8 +53,7 @@ SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) no
   return set_command(i, cmd);
 }
 
-JointFeedback MitHandDriver::joint(std::size_t i) const noexcept
-{
+JointFeedback MitHandDriver::joint(std::size_t i) const noexcept {
   JointFeedback out;
   if (i >= motors_.size()) {
     return out;
@@ -73,8 +68,7 @@ JointFeedback MitHandDriver::joint(std::size_t i) const noexcept
   return out;
 }
 
-bool MitHandDriver::all_on() const noexcept
-{
+bool MitHandDriver::all_on() const noexcept {
   for (const Motor& m : motors_) {
     if (m.state.mode != MitMode::On) {
       return false;
@@ -83,8 +77,7 @@ bool MitHandDriver::all_on() const noexcept
   return !motors_.empty();
 }
 
-bool MitHandDriver::all_off() const noexcept
-{
+bool MitHandDriver::all_off() const noexcept {
   for (const Motor& m : motors_) {
     if (m.state.mode != MitMode::Off) {
       return false;
@@ -93,8 +86,7 @@ bool MitHandDriver::all_off() const noexcept
   return !motors_.empty();
 }
 
-SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& cmd) noexcept
-{
+SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& cmd) noexcept {
   if (i >= motors_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -127,8 +119,7 @@ SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& 
   return SetpointResult::Ok;
 }
 
-const FaultReport& MitHandDriver::update(TimeNs now) noexcept
-{
+const FaultReport& MitHandDriver::update(TimeNs now) noexcept {
   routers_.start_cycle();
   for (std::size_t i = 0; i < motors_.size(); ++i) {
     Motor& m = motors_[i];
@@ -162,39 +153,38 @@ const FaultReport& MitHandDriver::update(TimeNs now) noexcept
   return routers_.publish();
 }
 
-std::size_t MitHandDriver::transmit(TimeNs) noexcept
-{
+std::size_t MitHandDriver::transmit(TimeNs) noexcept {
   std::size_t count = 0;
   for (Motor& m : motors_) {
     mrqp_fw_frame f;
     mrqp_fw_pack_flags pf = MRQP_FW_PACK_OK;
     switch (m.state.mode) {
-    case MitMode::Enabling:
-      pf = mrqp_fw_mit_pack_special(m.cfg.motor_id, MRQP_FW_MIT_KIND_ENABLE, &f);
-      break;
-    case MitMode::Disabling:
-      pf = mrqp_fw_mit_pack_special(m.cfg.motor_id, MRQP_FW_MIT_KIND_DISABLE, &f);
-      break;
-    case MitMode::On: {
-      mrqp_fw_mit_cmd c{};
-      if (m.sp_valid) {
-        c = m.sp;
-      } else {
-        c.p = m.state.position;  // no setpoint yet: no stiffness, no damping, no torque
-      }
-      pf = mrqp_fw_mit_pack_cmd(&m.cfg.ranges, m.cfg.motor_id, &c, &f);
-      break;
-    }
-    case MitMode::Off:
-      if (!config_.poll_when_disabled) {
-        continue;
-      }
-      {
+      case MitMode::Enabling:
+        pf = mrqp_fw_mit_pack_special(m.cfg.motor_id, MRQP_FW_MIT_KIND_ENABLE, &f);
+        break;
+      case MitMode::Disabling:
+        pf = mrqp_fw_mit_pack_special(m.cfg.motor_id, MRQP_FW_MIT_KIND_DISABLE, &f);
+        break;
+      case MitMode::On: {
         mrqp_fw_mit_cmd c{};
-        c.p = m.state.position;
+        if (m.sp_valid) {
+          c = m.sp;
+        } else {
+          c.p = m.state.position;  // no setpoint yet: no stiffness, no damping, no torque
+        }
         pf = mrqp_fw_mit_pack_cmd(&m.cfg.ranges, m.cfg.motor_id, &c, &f);
+        break;
       }
-      break;
+      case MitMode::Off:
+        if (!config_.poll_when_disabled) {
+          continue;
+        }
+        {
+          mrqp_fw_mit_cmd c{};
+          c.p = m.state.position;
+          pf = mrqp_fw_mit_pack_cmd(&m.cfg.ranges, m.cfg.motor_id, &c, &f);
+        }
+        break;
     }
     if (mrqp_fw_pack_failed(pf)) {
       continue;
@@ -218,8 +208,7 @@ std::size_t MitHandDriver::transmit(TimeNs) noexcept
   return count;
 }
 
-Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-{
+Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || f.id != MRQP_FW_MIT_MASTER_ID || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
@@ -251,7 +240,8 @@ Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs n
   // A value at the end of its wire range may be saturated; outside the limits is out of range.
   const mrqp_fw_mit_ranges& r = m.cfg.ranges;
   if (reply.p <= r.p_min || reply.p >= r.p_max || reply.v <= r.v_min || reply.v >= r.v_max ||
-      reply.t <= r.t_min || reply.t >= r.t_max || reply.p < m.cfg.position_min || reply.p > m.cfg.position_max) {
+      reply.t <= r.t_min || reply.t >= r.t_max || reply.p < m.cfg.position_min ||
+      reply.p > m.cfg.position_max) {
     ++m.faults.out_of_range;
     m.events |= fault::kOutOfRange;
   }

@@ -7,8 +7,7 @@
 namespace mrqp::drivers {
 
 std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter*>& buses,
-                                                     const MitHandConfig& config, std::string* error)
-{
+                                                     const MitHandConfig& config, std::string* error) {
   auto fail = [error](const std::string& msg) {
     if (error != nullptr) {
       *error = "MIT hand driver: " + msg;
@@ -63,8 +62,7 @@ std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter
   return p;
 }
 
-void MitHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const
-{
+void MitHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Motor& m : motors_) {
     n += m.cfg.bus == bus ? 1u : 0u;

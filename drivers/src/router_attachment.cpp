@@ -3,8 +3,7 @@
 
 namespace mrqp::drivers {
 
-int RouterAttachment::slot_of(const BusRouter& router) const noexcept
-{
+int RouterAttachment::slot_of(const BusRouter& router) const noexcept {
   for (std::size_t i = 0; i < routers_.size(); ++i) {
     if (routers_[i] == &router) {
       return static_cast<int>(i);
@@ -13,16 +12,14 @@ int RouterAttachment::slot_of(const BusRouter& router) const noexcept
   return -1;
 }
 
-void RouterAttachment::start_cycle() noexcept
-{
+void RouterAttachment::start_cycle() noexcept {
   ++report_.cycle;
   for (std::size_t s = 0; s < routers_.size(); ++s) {
     bus_faults_[s] = health_[s].update(*routers_[s]);
   }
 }
 
-const FaultReport& RouterAttachment::publish() noexcept
-{
+const FaultReport& RouterAttachment::publish() noexcept {
   report_.devices = device_faults_.data();
   report_.device_count = device_faults_.size();
   report_.buses = bus_faults_.data();

@@ -4,8 +4,7 @@
 namespace mrqp::drivers {
 
 std::string RouterAttachment::attach(const std::vector<BusRouter*>& routers, FrameHandler& handler,
-                                     std::size_t devices)
-{
+                                     std::size_t devices) {
   device_faults_.resize(devices);
   bus_faults_.resize(routers.size());
   health_.resize(routers.size());
@@ -19,7 +18,8 @@ std::string RouterAttachment::attach(const std::vector<BusRouter*>& routers, Fra
       for (std::size_t k = 0; k < s; ++k) {
         routers[k]->remove_handler(handler);
       }
-      return "bus " + std::to_string(s) + (duplicate ? " given twice" : ": the router's handler table is full");
+      return "bus " + std::to_string(s) +
+             (duplicate ? " given twice" : ": the router's handler table is full");
     }
     health_[s].reset(*routers[s]);
   }
@@ -32,8 +32,7 @@ std::string RouterAttachment::attach(const std::vector<BusRouter*>& routers, Fra
   return {};
 }
 
-RouterAttachment::~RouterAttachment()
-{
+RouterAttachment::~RouterAttachment() {
   if (handler_ == nullptr) {
     return;
   }

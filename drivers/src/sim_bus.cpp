@@ -10,8 +10,8 @@ namespace {
 // ISO 11898-1 fault confinement constants.
 constexpr std::uint32_t kWarningLimit = 96;
 constexpr std::uint32_t kPassiveLimit = 128;
-constexpr std::uint32_t kBusOffLimit = 255;       // bus-off when TEC > 255
-constexpr std::uint32_t kRecAfterPassive = 119;   // REC > 127 after a good reception: 119..127
+constexpr std::uint32_t kBusOffLimit = 255;      // bus-off when TEC > 255
+constexpr std::uint32_t kRecAfterPassive = 119;  // REC > 127 after a good reception: 119..127
 constexpr std::uint32_t kRecoveryOccurrences = 128;
 constexpr std::uint32_t kTxErrorIncrement = 8;
 constexpr std::uint32_t kSuspendBits = 8;
@@ -22,8 +22,7 @@ constexpr std::uint32_t kSuspendBits = 8;
 constexpr std::uint32_t kNoAckExtraBits = 6;
 constexpr std::uint32_t kErrorExtraBits = 4;
 
-BusState state_of(std::uint32_t tec, std::uint32_t rec) noexcept
-{
+BusState state_of(std::uint32_t tec, std::uint32_t rec) noexcept {
   if (tec > kBusOffLimit) {
     return BusState::BusOff;
   }
@@ -36,19 +35,21 @@ BusState state_of(std::uint32_t tec, std::uint32_t rec) noexcept
   return BusState::ErrorActive;
 }
 
-std::uint32_t state_flag(BusState s) noexcept
-{
+std::uint32_t state_flag(BusState s) noexcept {
   switch (s) {
-  case BusState::ErrorActive: return bus_error::kActive;
-  case BusState::ErrorWarning: return bus_error::kWarning;
-  case BusState::ErrorPassive: return bus_error::kPassive;
-  case BusState::BusOff: return bus_error::kBusOff;
+    case BusState::ErrorActive:
+      return bus_error::kActive;
+    case BusState::ErrorWarning:
+      return bus_error::kWarning;
+    case BusState::ErrorPassive:
+      return bus_error::kPassive;
+    case BusState::BusOff:
+      return bus_error::kBusOff;
   }
   return 0;
 }
 
-bool same_content(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept
-{
+bool same_content(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept {
   if (a.id != b.id || a.len != b.len || a.flags != b.flags) {
     return false;
   }
@@ -60,20 +61,22 @@ bool same_content(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept
   return true;
 }
 
-std::uint64_t arbitration_key(const mrqp_fw_frame& f) noexcept
-{
+std::uint64_t arbitration_key(const mrqp_fw_frame& f) noexcept {
   return (static_cast<std::uint64_t>(f.id) << 1) | ((f.flags & MRQP_FW_FRAME_FD) != 0u ? 1u : 0u);
 }
 
 }  // namespace
 
-const char* wire_outcome_str(WireOutcome outcome) noexcept
-{
+const char* wire_outcome_str(WireOutcome outcome) noexcept {
   switch (outcome) {
-  case WireOutcome::Delivered: return "delivered";
-  case WireOutcome::NoAck: return "no ACK";
-  case WireOutcome::BitError: return "bit error";
-  case WireOutcome::Collision: return "collision";
+    case WireOutcome::Delivered:
+      return "delivered";
+    case WireOutcome::NoAck:
+      return "no ACK";
+    case WireOutcome::BitError:
+      return "bit error";
+    case WireOutcome::Collision:
+      return "collision";
   }
   return "unknown";
 }
@@ -84,8 +87,7 @@ void SimListener::on_timer(SimNode&, TimeNs) noexcept {}
 // ---------------------------------------------------------------------------------------------
 // SimNode
 
-bool SimNode::frame_valid(const mrqp_fw_frame& f) const noexcept
-{
+bool SimNode::frame_valid(const mrqp_fw_frame& f) const noexcept {
   if ((f.flags & (MRQP_FW_FRAME_EXT | MRQP_FW_FRAME_RTR)) != 0u || f.id > MRQP_FW_CAN_SFF_MAX) {
     return false;
   }
@@ -95,13 +97,9 @@ bool SimNode::frame_valid(const mrqp_fw_frame& f) const noexcept
   return f.len <= MRQP_FW_CAN_CLASSIC_MAX_LEN && (f.flags & MRQP_FW_FRAME_BRS) == 0u;
 }
 
-SendResult SimNode::send(const mrqp_fw_frame& frame) noexcept
-{
-  return send_at(frame, bus_->now_);
-}
+SendResult SimNode::send(const mrqp_fw_frame& frame) noexcept { return send_at(frame, bus_->now_); }
 
-SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept
-{
+SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept {
   if (!connected_) {
     ++counters_.tx_failed;
     return SendResult::Down;
@@ -134,29 +132,25 @@ SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept
   return SendResult::Ok;
 }
 
-void SimNode::tx_pop() noexcept
-{
+void SimNode::tx_pop() noexcept {
   if (tx_count_ > 0) {
     tx_head_ = (tx_head_ + 1) % tx_.size();
     --tx_count_;
   }
 }
 
-void SimNode::cancel_pending() noexcept
-{
+void SimNode::cancel_pending() noexcept {
   tx_head_ = 0;
   tx_count_ = 0;
 }
 
-void SimNode::tx_flush() noexcept
-{
+void SimNode::tx_flush() noexcept {
   counters_.tx_failed += tx_count_;
   tx_head_ = 0;
   tx_count_ = 0;
 }
 
-ReceiveResult SimNode::receive(RxFrame& out) noexcept
-{
+ReceiveResult SimNode::receive(RxFrame& out) noexcept {
   if (rx_count_ == 0) {
     return ReceiveResult::Empty;
   }
@@ -168,8 +162,7 @@ ReceiveResult SimNode::receive(RxFrame& out) noexcept
   return error ? ReceiveResult::ErrorEvent : ReceiveResult::Frame;
 }
 
-BusStatus SimNode::status() const noexcept
-{
+BusStatus SimNode::status() const noexcept {
   BusStatus s = counters_;
   s.state = state_;
   s.tec = static_cast<std::uint16_t>(std::min<std::uint32_t>(tec_, 0xFFFFu));
@@ -177,18 +170,11 @@ BusStatus SimNode::status() const noexcept
   return s;
 }
 
-bool SimNode::fd_enabled() const noexcept
-{
-  return config_.fd && bus_->config_.data_bps > 0u;
-}
+bool SimNode::fd_enabled() const noexcept { return config_.fd && bus_->config_.data_bps > 0u; }
 
-const char* SimNode::name() const noexcept
-{
-  return config_.name != nullptr ? config_.name : "sim node";
-}
+const char* SimNode::name() const noexcept { return config_.name != nullptr ? config_.name : "sim node"; }
 
-void SimNode::set_connected(bool connected) noexcept
-{
+void SimNode::set_connected(bool connected) noexcept {
   if (connected == connected_) {
     return;
   }
@@ -205,8 +191,7 @@ void SimNode::set_connected(bool connected) noexcept
   recovery_recessive_ns_ = 0;
 }
 
-void SimNode::deliver(ReceiveResult kind, const RxFrame& rx) noexcept
-{
+void SimNode::deliver(ReceiveResult kind, const RxFrame& rx) noexcept {
   if (kind == ReceiveResult::Frame) {
     ++counters_.rx_frames;
   } else {
@@ -226,8 +211,7 @@ void SimNode::deliver(ReceiveResult kind, const RxFrame& rx) noexcept
   ++rx_count_;
 }
 
-void SimNode::emit_error(std::uint32_t flags, TimeNs when) noexcept
-{
+void SimNode::emit_error(std::uint32_t flags, TimeNs when) noexcept {
   if (!config_.error_events || flags == 0u) {
     return;
   }
@@ -241,8 +225,7 @@ void SimNode::emit_error(std::uint32_t flags, TimeNs when) noexcept
   deliver(ReceiveResult::ErrorEvent, rx);
 }
 
-void SimNode::set_counters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept
-{
+void SimNode::set_counters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept {
   tec_ = tec;
   rec_ = std::min<std::uint32_t>(rec, 255u);
   const BusState next = state_of(tec_, rec_);
@@ -261,13 +244,11 @@ void SimNode::set_counters(std::uint32_t tec, std::uint32_t rec, std::uint32_t f
 // ---------------------------------------------------------------------------------------------
 // SimBus
 
-TimeNs SimBus::bit_time() const noexcept
-{
+TimeNs SimBus::bit_time() const noexcept {
   return static_cast<TimeNs>((1000000000ull + config_.nominal_bps - 1u) / config_.nominal_bps);
 }
 
-mrqp_fw_frame_bits SimBus::frame_bits(const mrqp_fw_frame& frame) const noexcept
-{
+mrqp_fw_frame_bits SimBus::frame_bits(const mrqp_fw_frame& frame) const noexcept {
   const int worst = config_.worst_case_stuffing ? 1 : 0;
   if ((frame.flags & MRQP_FW_FRAME_FD) != 0u) {
     return mrqp_fw_bits_fd(frame.len, (frame.flags & MRQP_FW_FRAME_BRS) != 0u ? 1 : 0, worst);
@@ -275,14 +256,12 @@ mrqp_fw_frame_bits SimBus::frame_bits(const mrqp_fw_frame& frame) const noexcept
   return mrqp_fw_bits_classic(frame.len, worst);
 }
 
-TimeNs SimBus::bits_time(mrqp_fw_frame_bits bits) const noexcept
-{
+TimeNs SimBus::bits_time(mrqp_fw_frame_bits bits) const noexcept {
   const std::uint32_t data = config_.data_bps > 0u ? config_.data_bps : config_.nominal_bps;
   return static_cast<TimeNs>(mrqp_fw_frame_time_ns(bits, config_.nominal_bps, data));
 }
 
-bool SimBus::is_receiver(const SimNode& n) const noexcept
-{
+bool SimBus::is_receiver(const SimNode& n) const noexcept {
   if (!n.connected_ || n.state_ == BusState::BusOff) {
     return false;
   }
@@ -297,16 +276,14 @@ bool SimBus::is_receiver(const SimNode& n) const noexcept
   return true;
 }
 
-TimeNs SimBus::eligible_time(const SimNode& n) const noexcept
-{
+TimeNs SimBus::eligible_time(const SimNode& n) const noexcept {
   if (!n.connected_ || n.state_ == BusState::BusOff || n.tx_count_ == 0) {
     return kNever;
   }
   return std::max(n.tx_head().ready, n.suspend_until_);
 }
 
-TimeNs SimBus::next_tx_start() const noexcept
-{
+TimeNs SimBus::next_tx_start() const noexcept {
   TimeNs t = kNever;
   for (const auto& n : nodes_) {
     t = std::min(t, eligible_time(*n));
@@ -314,8 +291,7 @@ TimeNs SimBus::next_tx_start() const noexcept
   return t == kNever ? kNever : std::max(t, bus_free_);
 }
 
-TimeNs SimBus::next_recovery() const noexcept
-{
+TimeNs SimBus::next_recovery() const noexcept {
   TimeNs t = kNever;
   for (const auto& p : nodes_) {
     const SimNode& n = *p;
@@ -323,16 +299,15 @@ TimeNs SimBus::next_recovery() const noexcept
       const std::uint32_t need = n.recovery_occurrences_ >= kRecoveryOccurrences
                                      ? 0u
                                      : kRecoveryOccurrences - n.recovery_occurrences_;
-      const TimeNs due = std::max(idle_mark_, bus_free_) +
-                         static_cast<TimeNs>(need) * occurrence_ns_ - n.recovery_recessive_ns_;
+      const TimeNs due = std::max(idle_mark_, bus_free_) + static_cast<TimeNs>(need) * occurrence_ns_ -
+                         n.recovery_recessive_ns_;
       t = std::min(t, due);
     }
   }
   return t;
 }
 
-void SimBus::account_idle(TimeNs t) noexcept
-{
+void SimBus::account_idle(TimeNs t) noexcept {
   if (t <= idle_mark_) {
     return;
   }
@@ -350,8 +325,7 @@ void SimBus::account_idle(TimeNs t) noexcept
   idle_mark_ = t;
 }
 
-void SimBus::recover_due(TimeNs t) noexcept
-{
+void SimBus::recover_due(TimeNs t) noexcept {
   for (auto& p : nodes_) {
     SimNode& n = *p;
     if (n.connected_ && n.state_ == BusState::BusOff && n.config_.auto_recover &&
@@ -364,8 +338,7 @@ void SimBus::recover_due(TimeNs t) noexcept
   }
 }
 
-TimeNs SimBus::next_timer() const noexcept
-{
+TimeNs SimBus::next_timer() const noexcept {
   TimeNs t = kNever;
   for (const auto& n : nodes_) {
     if (n->connected_ && n->listener_ != nullptr) {
@@ -375,8 +348,7 @@ TimeNs SimBus::next_timer() const noexcept
   return t;
 }
 
-void SimBus::fire_timers(TimeNs t) noexcept
-{
+void SimBus::fire_timers(TimeNs t) noexcept {
   for (auto& p : nodes_) {
     SimNode& n = *p;
     if (n.connected_ && n.listener_ != nullptr && n.timer_at_ <= t) {
@@ -386,8 +358,7 @@ void SimBus::fire_timers(TimeNs t) noexcept
   }
 }
 
-void SimBus::advance_to(TimeNs target) noexcept
-{
+void SimBus::advance_to(TimeNs target) noexcept {
   if (target < now_) {
     return;
   }
@@ -429,8 +400,7 @@ void SimBus::advance_to(TimeNs target) noexcept
   now_ = target;
 }
 
-void SimBus::start_frame(TimeNs t) noexcept
-{
+void SimBus::start_frame(TimeNs t) noexcept {
   // Arbitration: the lowest key among the nodes ready at t.
   std::uint64_t best = UINT64_MAX;
   for (const auto& p : nodes_) {
@@ -491,8 +461,7 @@ void SimBus::start_frame(TimeNs t) noexcept
   ++stats_.attempts;
 }
 
-void SimBus::finish_frame() noexcept
-{
+void SimBus::finish_frame() noexcept {
   busy_ = false;
   const TimeNs end = current_.end;
   now_ = std::max(now_, end);
@@ -512,92 +481,92 @@ void SimBus::finish_frame() noexcept
   const TimeNs suspend = end + static_cast<TimeNs>(kSuspendBits) * bit_time();
 
   switch (current_.outcome) {
-  case WireOutcome::Delivered: {
-    ++stats_.delivered;
-    for (std::size_t i = 0; i < participant_count_; ++i) {
-      SimNode& n = *nodes_[participants_[i]];
-      n.tx_pop();
-      n.set_counters(n.tec_ > 0 ? n.tec_ - 1 : 0, n.rec_, 0, end);
-      if (n.state_ == BusState::ErrorPassive) {
-        n.suspend_until_ = suspend;
-      }
-    }
-    RxFrame rx{};
-    rx.frame = current_.frame;
-    rx.timestamp = end;
-    rx.has_timestamp = true;
-    for (auto& p : nodes_) {
-      SimNode& n = *p;
-      if (!is_receiver(n)) {
-        continue;
-      }
-      std::uint32_t rec = n.rec_;
-      if (rec > 127u) {
-        rec = kRecAfterPassive;
-      } else if (rec > 0u) {
-        --rec;
-      }
-      n.set_counters(n.tec_, rec, 0, end);
-      n.deliver(ReceiveResult::Frame, rx);
-    }
-    for (std::size_t i = 0; i < participant_count_; ++i) {
-      SimNode& n = *nodes_[participants_[i]];
-      if (n.config_.echo_own) {
-        RxFrame echo = rx;
-        echo.own = true;
-        n.deliver(ReceiveResult::Frame, echo);
-      }
-      if (n.listener_ != nullptr) {
-        n.listener_->on_transmitted(n, current_.frame, end);
-      }
-    }
-    break;
-  }
-  case WireOutcome::NoAck: {
-    ++stats_.no_ack;
-    for (std::size_t i = 0; i < participant_count_; ++i) {
-      SimNode& n = *nodes_[participants_[i]];
-      // Exception 1 of ISO 11898-1 fault confinement rule 3: an error-passive transmitter that
-      // detects an ACK error (and no dominant bit during its passive error flag) keeps its TEC.
-      const bool passive = n.state_ == BusState::ErrorPassive;
-      const std::uint32_t tec = passive ? n.tec_ : n.tec_ + kTxErrorIncrement;
-      if (n.config_.one_shot) {
+    case WireOutcome::Delivered: {
+      ++stats_.delivered;
+      for (std::size_t i = 0; i < participant_count_; ++i) {
+        SimNode& n = *nodes_[participants_[i]];
         n.tx_pop();
-        ++n.counters_.tx_failed;
+        n.set_counters(n.tec_ > 0 ? n.tec_ - 1 : 0, n.rec_, 0, end);
+        if (n.state_ == BusState::ErrorPassive) {
+          n.suspend_until_ = suspend;
+        }
       }
-      n.set_counters(tec, n.rec_, bus_error::kAck | bus_error::kTransmitting, end);
-      if (n.state_ == BusState::ErrorPassive) {
-        n.suspend_until_ = suspend;
+      RxFrame rx{};
+      rx.frame = current_.frame;
+      rx.timestamp = end;
+      rx.has_timestamp = true;
+      for (auto& p : nodes_) {
+        SimNode& n = *p;
+        if (!is_receiver(n)) {
+          continue;
+        }
+        std::uint32_t rec = n.rec_;
+        if (rec > 127u) {
+          rec = kRecAfterPassive;
+        } else if (rec > 0u) {
+          --rec;
+        }
+        n.set_counters(n.tec_, rec, 0, end);
+        n.deliver(ReceiveResult::Frame, rx);
       }
+      for (std::size_t i = 0; i < participant_count_; ++i) {
+        SimNode& n = *nodes_[participants_[i]];
+        if (n.config_.echo_own) {
+          RxFrame echo = rx;
+          echo.own = true;
+          n.deliver(ReceiveResult::Frame, echo);
+        }
+        if (n.listener_ != nullptr) {
+          n.listener_->on_transmitted(n, current_.frame, end);
+        }
+      }
+      break;
     }
-    break;
-  }
-  case WireOutcome::BitError:
-  case WireOutcome::Collision: {
-    if (current_.outcome == WireOutcome::BitError) {
-      ++stats_.bit_errors;
-    } else {
-      ++stats_.collisions;
-    }
-    for (auto& p : nodes_) {
-      SimNode& n = *p;
-      if (is_receiver(n)) {
-        n.set_counters(n.tec_, n.rec_ + 1u, bus_error::kProtocol, end);
+    case WireOutcome::NoAck: {
+      ++stats_.no_ack;
+      for (std::size_t i = 0; i < participant_count_; ++i) {
+        SimNode& n = *nodes_[participants_[i]];
+        // Exception 1 of ISO 11898-1 fault confinement rule 3: an error-passive transmitter that
+        // detects an ACK error (and no dominant bit during its passive error flag) keeps its TEC.
+        const bool passive = n.state_ == BusState::ErrorPassive;
+        const std::uint32_t tec = passive ? n.tec_ : n.tec_ + kTxErrorIncrement;
+        if (n.config_.one_shot) {
+          n.tx_pop();
+          ++n.counters_.tx_failed;
+        }
+        n.set_counters(tec, n.rec_, bus_error::kAck | bus_error::kTransmitting, end);
+        if (n.state_ == BusState::ErrorPassive) {
+          n.suspend_until_ = suspend;
+        }
       }
+      break;
     }
-    for (std::size_t i = 0; i < participant_count_; ++i) {
-      SimNode& n = *nodes_[participants_[i]];
-      if (n.config_.one_shot) {
-        n.tx_pop();
-        ++n.counters_.tx_failed;
+    case WireOutcome::BitError:
+    case WireOutcome::Collision: {
+      if (current_.outcome == WireOutcome::BitError) {
+        ++stats_.bit_errors;
+      } else {
+        ++stats_.collisions;
       }
-      n.set_counters(n.tec_ + kTxErrorIncrement, n.rec_, bus_error::kBit | bus_error::kTransmitting, end);
-      if (n.state_ == BusState::ErrorPassive) {
-        n.suspend_until_ = suspend;
+      for (auto& p : nodes_) {
+        SimNode& n = *p;
+        if (is_receiver(n)) {
+          n.set_counters(n.tec_, n.rec_ + 1u, bus_error::kProtocol, end);
+        }
       }
+      for (std::size_t i = 0; i < participant_count_; ++i) {
+        SimNode& n = *nodes_[participants_[i]];
+        if (n.config_.one_shot) {
+          n.tx_pop();
+          ++n.counters_.tx_failed;
+        }
+        n.set_counters(n.tec_ + kTxErrorIncrement, n.rec_, bus_error::kBit | bus_error::kTransmitting, end);
+        if (n.state_ == BusState::ErrorPassive) {
+          n.suspend_until_ = suspend;
+        }
+      }
+      break;
     }
-    break;
-  }
   }
   participant_count_ = 0;
 }

@@ -8,14 +8,11 @@ SimNode::SimNode(SimBus& bus, std::size_t index, const SimNodeConfig& config)
       index_(index),
       config_(config),
       tx_(config.tx_queue > 0 ? config.tx_queue : 1),
-      rx_(config.rx_queue > 0 ? config.rx_queue : 1)
-{
-}
+      rx_(config.rx_queue > 0 ? config.rx_queue : 1) {}
 
 SimNode::~SimNode() = default;
 
-SimBus::SimBus(const SimBusConfig& config) : config_(config)
-{
+SimBus::SimBus(const SimBusConfig& config) : config_(config) {
   if (config_.nominal_bps == 0u) {
     config_.nominal_bps = 1000000u;
   }
@@ -29,8 +26,7 @@ SimBus::SimBus(const SimBusConfig& config) : config_(config)
 
 SimBus::~SimBus() = default;
 
-SimNode* SimBus::add_node(const SimNodeConfig& config)
-{
+SimNode* SimBus::add_node(const SimNodeConfig& config) {
   if (nodes_.size() >= config_.max_nodes) {
     return nullptr;
   }

@@ -16,14 +16,12 @@ namespace mrqp::drivers {
 
 namespace {
 
-TimeNs timespec_ns(const timespec& ts) noexcept
-{
+TimeNs timespec_ns(const timespec& ts) noexcept {
   return static_cast<TimeNs>(ts.tv_sec) * 1000000000 + static_cast<TimeNs>(ts.tv_nsec);
 }
 
 // Offset CLOCK_MONOTONIC - CLOCK_REALTIME now (two vDSO reads).
-TimeNs realtime_to_monotonic_offset() noexcept
-{
+TimeNs realtime_to_monotonic_offset() noexcept {
   timespec mono{};
   timespec real{};
   clock_gettime(CLOCK_MONOTONIC, &mono);
@@ -33,8 +31,7 @@ TimeNs realtime_to_monotonic_offset() noexcept
 
 }  // namespace
 
-SendResult SocketCanBus::send(const mrqp_fw_frame& frame) noexcept
-{
+SendResult SocketCanBus::send(const mrqp_fw_frame& frame) noexcept {
   if (fd_ < 0) {
     ++status_.tx_failed;
     return SendResult::Down;
@@ -84,8 +81,7 @@ SendResult SocketCanBus::send(const mrqp_fw_frame& frame) noexcept
   return SendResult::Failed;
 }
 
-void SocketCanBus::on_error_frame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept
-{
+void SocketCanBus::on_error_frame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept {
   std::uint32_t flags = 0;
   const std::uint32_t cls = can_id & CAN_ERR_MASK;
   if ((cls & CAN_ERR_TX_TIMEOUT) != 0u) {
@@ -174,8 +170,7 @@ void SocketCanBus::on_error_frame(const std::uint8_t* data, std::uint32_t can_id
   ++status_.error_events;
 }
 
-ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept
-{
+ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept {
   if (fd_ < 0) {
     return ReceiveResult::Empty;
   }

@@ -19,13 +19,9 @@ namespace mrqp::drivers {
 
 namespace {
 
-std::string errno_text(int e)
-{
-  return std::string(std::strerror(e));
-}
+std::string errno_text(int e) { return std::string(std::strerror(e)); }
 
-bool fail(std::string* error, const std::string& message)
-{
+bool fail(std::string* error, const std::string& message) {
   if (error != nullptr) {
     *error = message;
   }
@@ -34,13 +30,9 @@ bool fail(std::string* error, const std::string& message)
 
 }  // namespace
 
-SocketCanBus::~SocketCanBus()
-{
-  close();
-}
+SocketCanBus::~SocketCanBus() { close(); }
 
-void SocketCanBus::close() noexcept
-{
+void SocketCanBus::close() noexcept {
   if (fd_ >= 0) {
     ::close(fd_);
   }
@@ -49,8 +41,7 @@ void SocketCanBus::close() noexcept
   receive_own_ = false;
 }
 
-bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
-{
+bool SocketCanBus::open(const SocketCanConfig& config, std::string* error) {
   close();
   status_ = BusStatus{};
   last_errno_ = 0;
@@ -65,11 +56,11 @@ bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
   if (s < 0) {
     const int e = errno;
     if (e == EAFNOSUPPORT || e == EPROTONOSUPPORT || e == ESOCKTNOSUPPORT) {
-      return fail(error, "AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): " +
-                             errno_text(e) +
-                             "): SocketCAN needs the can and can_raw kernel modules; use the in-process "
-                             "bus (SimBus) here, or run on a kernel with CAN support (e.g. the HIL VM "
-                             "with vcan, see docs/drivers.md)");
+      return fail(error,
+                  "AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): " + errno_text(e) +
+                      "): SocketCAN needs the can and can_raw kernel modules; use the in-process "
+                      "bus (SimBus) here, or run on a kernel with CAN support (e.g. the HIL VM "
+                      "with vcan, see docs/drivers.md)");
     }
     return fail(error, "SocketCAN: socket(AF_CAN, SOCK_RAW, CAN_RAW) failed: " + errno_text(e));
   }
@@ -95,7 +86,8 @@ bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
       ::close(s);
       return fail(error, "SocketCAN " + ifname + ": CAN FD requested but the interface MTU is " +
                              std::to_string(mtu.ifr_mtu) + " (" + std::to_string(CANFD_MTU) +
-                             " needed: 'ip link set " + ifname + " mtu 72' or configure the "
+                             " needed: 'ip link set " + ifname +
+                             " mtu 72' or configure the "
                              "controller with 'fd on')");
     }
     const int on = 1;
@@ -137,7 +129,8 @@ bool SocketCanBus::open(const SocketCanConfig& config, std::string* error)
     }
   }
   if (config.send_buffer_bytes > 0) {
-    if (::setsockopt(s, SOL_SOCKET, SO_SNDBUF, &config.send_buffer_bytes, sizeof(config.send_buffer_bytes)) < 0) {
+    if (::setsockopt(s, SOL_SOCKET, SO_SNDBUF, &config.send_buffer_bytes, sizeof(config.send_buffer_bytes)) <
+        0) {
       return give_up("setsockopt(SO_SNDBUF)", errno);
     }
   }

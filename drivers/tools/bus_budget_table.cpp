@@ -10,8 +10,7 @@
 
 #include "mrqp/drivers/budget_table.hpp"
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   if (argc == 1) {
     std::fputs(mrqp::drivers::reference_budget_tables().c_str(), stdout);
     return 0;
@@ -30,8 +29,8 @@ int main(int argc, char** argv)
     return 2;
   }
   const std::string table = mrqp::drivers::budget_table_markdown(
-      robot, {{"classic 1 Mbit/s", 1000000u, 0u}, {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}}, {250.0, 500.0, 1000.0},
-      limit);
+      robot, {{"classic 1 Mbit/s", 1000000u, 0u}, {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}},
+      {250.0, 500.0, 1000.0}, limit);
   std::fputs(table.c_str(), stdout);
   return 0;
 }

@@ -6,31 +6,29 @@
 #include "mrqp/firmware_if/canopen_ids.h"
 #include "mrqp/firmware_if/objects.h"
 
-unsigned mrqp_fw_arm_pdo_mapping(mrqp_fw_arm_pdo pdo, uint32_t entries[4])
-{
+unsigned mrqp_fw_arm_pdo_mapping(mrqp_fw_arm_pdo pdo, uint32_t entries[4]) {
   switch (pdo) {
-  case MRQP_FW_ARM_RPDO1:
-    entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_CONTROLWORD, 0u, 16u);
-    entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TARGET_POSITION, 0u, 32u);
-    entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TARGET_TORQUE, 0u, 16u);
-    return 3u;
-  case MRQP_FW_ARM_TPDO1:
-    entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_STATUSWORD, 0u, 16u);
-    entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_POSITION_ACTUAL, 0u, 32u);
-    entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TORQUE_ACTUAL, 0u, 16u);
-    return 3u;
-  case MRQP_FW_ARM_TPDO2:
-    entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_VELOCITY_ACTUAL, 0u, 32u);
-    entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_ERROR_CODE, 0u, 16u);
-    entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_MODES_OF_OPERATION_DISPLAY, 0u, 8u);
-    return 3u;
+    case MRQP_FW_ARM_RPDO1:
+      entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_CONTROLWORD, 0u, 16u);
+      entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TARGET_POSITION, 0u, 32u);
+      entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TARGET_TORQUE, 0u, 16u);
+      return 3u;
+    case MRQP_FW_ARM_TPDO1:
+      entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_STATUSWORD, 0u, 16u);
+      entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_POSITION_ACTUAL, 0u, 32u);
+      entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_TORQUE_ACTUAL, 0u, 16u);
+      return 3u;
+    case MRQP_FW_ARM_TPDO2:
+      entries[0] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_VELOCITY_ACTUAL, 0u, 32u);
+      entries[1] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_ERROR_CODE, 0u, 16u);
+      entries[2] = MRQP_FW_PDO_MAP_ENTRY(MRQP_FW_OBJ_MODES_OF_OPERATION_DISPLAY, 0u, 8u);
+      return 3u;
   }
   return 0u;
 }
 
 /* Checks the envelope of a PDO frame of `node` at COB base `base` and length `len`. */
-static mrqp_fw_err expect_pdo(const mrqp_fw_frame *in, unsigned node, uint32_t base, unsigned len)
-{
+static mrqp_fw_err expect_pdo(const mrqp_fw_frame* in, unsigned node, uint32_t base, unsigned len) {
   if (in == NULL) {
     return MRQP_FW_ERR_NULL;
   }
@@ -40,8 +38,7 @@ static mrqp_fw_err expect_pdo(const mrqp_fw_frame *in, unsigned node, uint32_t b
   return mrqp_fw_frame_expect(in, base + node, len, 0);
 }
 
-mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1(unsigned node, const mrqp_fw_arm_rpdo1 *pdo, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1(unsigned node, const mrqp_fw_arm_rpdo1* pdo, mrqp_fw_frame* out) {
   if (out == NULL || pdo == NULL || !mrqp_fw_node_valid(node)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
@@ -52,8 +49,7 @@ mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1(unsigned node, const mrqp_fw_arm_rpdo1
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_arm_unpack_rpdo1(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_rpdo1 *pdo)
-{
+mrqp_fw_err mrqp_fw_arm_unpack_rpdo1(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_rpdo1* pdo) {
   mrqp_fw_err e = expect_pdo(in, node, MRQP_FW_COB_RPDO1_BASE, MRQP_FW_ARM_RPDO1_LEN);
   if (e != MRQP_FW_OK) {
     return e;
@@ -67,8 +63,7 @@ mrqp_fw_err mrqp_fw_arm_unpack_rpdo1(const mrqp_fw_frame *in, unsigned node, mrq
   return MRQP_FW_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo1(unsigned node, const mrqp_fw_arm_tpdo1 *pdo, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo1(unsigned node, const mrqp_fw_arm_tpdo1* pdo, mrqp_fw_frame* out) {
   if (out == NULL || pdo == NULL || !mrqp_fw_node_valid(node)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
@@ -79,8 +74,7 @@ mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo1(unsigned node, const mrqp_fw_arm_tpdo1
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_arm_unpack_tpdo1(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_tpdo1 *pdo)
-{
+mrqp_fw_err mrqp_fw_arm_unpack_tpdo1(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_tpdo1* pdo) {
   mrqp_fw_err e = expect_pdo(in, node, MRQP_FW_COB_TPDO1_BASE, MRQP_FW_ARM_TPDO1_LEN);
   if (e != MRQP_FW_OK) {
     return e;
@@ -94,8 +88,7 @@ mrqp_fw_err mrqp_fw_arm_unpack_tpdo1(const mrqp_fw_frame *in, unsigned node, mrq
   return MRQP_FW_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo2(unsigned node, const mrqp_fw_arm_tpdo2 *pdo, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo2(unsigned node, const mrqp_fw_arm_tpdo2* pdo, mrqp_fw_frame* out) {
   if (out == NULL || pdo == NULL || !mrqp_fw_node_valid(node)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
@@ -106,8 +99,7 @@ mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo2(unsigned node, const mrqp_fw_arm_tpdo2
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_arm_unpack_tpdo2(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_tpdo2 *pdo)
-{
+mrqp_fw_err mrqp_fw_arm_unpack_tpdo2(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_tpdo2* pdo) {
   mrqp_fw_err e = expect_pdo(in, node, MRQP_FW_COB_TPDO2_BASE, MRQP_FW_ARM_TPDO2_LEN);
   if (e != MRQP_FW_OK) {
     return e;
@@ -121,9 +113,9 @@ mrqp_fw_err mrqp_fw_arm_unpack_tpdo2(const mrqp_fw_frame *in, unsigned node, mrq
   return MRQP_FW_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1_si(const mrqp_fw_arm_scale *scale, unsigned node, uint16_t controlword,
-                                             double position_rad, double torque_nm, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1_si(const mrqp_fw_arm_scale* scale, unsigned node,
+                                             uint16_t controlword, double position_rad, double torque_nm,
+                                             mrqp_fw_frame* out) {
   mrqp_fw_arm_rpdo1 pdo;
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   mrqp_fw_conv rp;

@@ -7,13 +7,11 @@
 
 #define MRQP_FW_TWO_PI 6.283185307179586476925286766559
 
-int mrqp_fw_arm_scale_valid(const mrqp_fw_arm_scale *scale)
-{
+int mrqp_fw_arm_scale_valid(const mrqp_fw_arm_scale* scale) {
   return scale != NULL && scale->increments_per_rev > 0u && scale->rated_torque_mNm > 0u;
 }
 
-static mrqp_fw_conv to_i32(double x, int32_t *out)
-{
+static mrqp_fw_conv to_i32(double x, int32_t* out) {
   int64_t v = 0;
   mrqp_fw_conv r = mrqp_fw_quantize_int(x, INT32_MIN, INT32_MAX, &v);
   if (r == MRQP_FW_CONV_OK || r == MRQP_FW_CONV_SAT_LOW || r == MRQP_FW_CONV_SAT_HIGH) {
@@ -22,16 +20,14 @@ static mrqp_fw_conv to_i32(double x, int32_t *out)
   return r;
 }
 
-mrqp_fw_conv mrqp_fw_arm_position_to_inc(const mrqp_fw_arm_scale *scale, double rad, int32_t *inc)
-{
+mrqp_fw_conv mrqp_fw_arm_position_to_inc(const mrqp_fw_arm_scale* scale, double rad, int32_t* inc) {
   if (!mrqp_fw_arm_scale_valid(scale) || inc == NULL) {
     return MRQP_FW_CONV_BAD_SCALE;
   }
   return to_i32(rad * ((double)scale->increments_per_rev / MRQP_FW_TWO_PI), inc);
 }
 
-mrqp_fw_conv mrqp_fw_arm_position_from_inc(const mrqp_fw_arm_scale *scale, int32_t inc, double *rad)
-{
+mrqp_fw_conv mrqp_fw_arm_position_from_inc(const mrqp_fw_arm_scale* scale, int32_t inc, double* rad) {
   if (!mrqp_fw_arm_scale_valid(scale) || rad == NULL) {
     return MRQP_FW_CONV_BAD_SCALE;
   }
@@ -39,18 +35,15 @@ mrqp_fw_conv mrqp_fw_arm_position_from_inc(const mrqp_fw_arm_scale *scale, int32
   return MRQP_FW_CONV_OK;
 }
 
-mrqp_fw_conv mrqp_fw_arm_velocity_to_inc(const mrqp_fw_arm_scale *scale, double rad_s, int32_t *inc_s)
-{
+mrqp_fw_conv mrqp_fw_arm_velocity_to_inc(const mrqp_fw_arm_scale* scale, double rad_s, int32_t* inc_s) {
   return mrqp_fw_arm_position_to_inc(scale, rad_s, inc_s); /* same factor, per second */
 }
 
-mrqp_fw_conv mrqp_fw_arm_velocity_from_inc(const mrqp_fw_arm_scale *scale, int32_t inc_s, double *rad_s)
-{
+mrqp_fw_conv mrqp_fw_arm_velocity_from_inc(const mrqp_fw_arm_scale* scale, int32_t inc_s, double* rad_s) {
   return mrqp_fw_arm_position_from_inc(scale, inc_s, rad_s);
 }
 
-mrqp_fw_conv mrqp_fw_arm_torque_to_permille(const mrqp_fw_arm_scale *scale, double nm, int16_t *permille)
-{
+mrqp_fw_conv mrqp_fw_arm_torque_to_permille(const mrqp_fw_arm_scale* scale, double nm, int16_t* permille) {
   int64_t v = 0;
   mrqp_fw_conv r;
   if (!mrqp_fw_arm_scale_valid(scale) || permille == NULL) {
@@ -64,8 +57,7 @@ mrqp_fw_conv mrqp_fw_arm_torque_to_permille(const mrqp_fw_arm_scale *scale, doub
   return r;
 }
 
-mrqp_fw_conv mrqp_fw_arm_torque_from_permille(const mrqp_fw_arm_scale *scale, int16_t permille, double *nm)
-{
+mrqp_fw_conv mrqp_fw_arm_torque_from_permille(const mrqp_fw_arm_scale* scale, int16_t permille, double* nm) {
   if (!mrqp_fw_arm_scale_valid(scale) || nm == NULL) {
     return MRQP_FW_CONV_BAD_SCALE;
   }

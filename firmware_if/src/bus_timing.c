@@ -3,8 +3,7 @@
 
 #include "mrqp/firmware_if/frame.h"
 
-mrqp_fw_frame_bits mrqp_fw_bits_classic(unsigned n, int worst_case_stuffing)
-{
+mrqp_fw_frame_bits mrqp_fw_bits_classic(unsigned n, int worst_case_stuffing) {
   mrqp_fw_frame_bits b;
   uint32_t bytes = n > 8u ? 8u : (uint32_t)n;
   uint32_t stuffable = 34u + 8u * bytes;
@@ -13,8 +12,7 @@ mrqp_fw_frame_bits mrqp_fw_bits_classic(unsigned n, int worst_case_stuffing)
   return b;
 }
 
-mrqp_fw_frame_bits mrqp_fw_bits_fd(unsigned n, int brs, int worst_case_stuffing)
-{
+mrqp_fw_frame_bits mrqp_fw_bits_fd(unsigned n, int brs, int worst_case_stuffing) {
   mrqp_fw_frame_bits b;
   uint32_t len = mrqp_fw_fd_len_round_up(n > 64u ? 64u : n);
   uint32_t crc_bits = len <= 16u ? 17u : 21u;
@@ -38,8 +36,7 @@ mrqp_fw_frame_bits mrqp_fw_bits_fd(unsigned n, int brs, int worst_case_stuffing)
   return b;
 }
 
-uint32_t mrqp_fw_frame_time_ns(mrqp_fw_frame_bits bits, uint32_t nominal_bps, uint32_t data_bps)
-{
+uint32_t mrqp_fw_frame_time_ns(mrqp_fw_frame_bits bits, uint32_t nominal_bps, uint32_t data_bps) {
   uint64_t ns;
   if (nominal_bps == 0u || (bits.data_bits != 0u && data_bps == 0u)) {
     return 0xFFFFFFFFu;

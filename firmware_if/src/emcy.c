@@ -7,8 +7,7 @@
 #include "mrqp/firmware_if/bytes.h"
 #include "mrqp/firmware_if/canopen_ids.h"
 
-mrqp_fw_pack_flags mrqp_fw_emcy_pack(unsigned node, const mrqp_fw_emcy *emcy, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_emcy_pack(unsigned node, const mrqp_fw_emcy* emcy, mrqp_fw_frame* out) {
   if (out == NULL || emcy == NULL || !mrqp_fw_node_valid(node)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
@@ -19,8 +18,7 @@ mrqp_fw_pack_flags mrqp_fw_emcy_pack(unsigned node, const mrqp_fw_emcy *emcy, mr
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_emcy_unpack(const mrqp_fw_frame *in, uint8_t *node, mrqp_fw_emcy *emcy)
-{
+mrqp_fw_err mrqp_fw_emcy_unpack(const mrqp_fw_frame* in, uint8_t* node, mrqp_fw_emcy* emcy) {
   uint8_t n = 0u;
   mrqp_fw_err e = mrqp_fw_classic_envelope(in);
   if (e != MRQP_FW_OK) {
@@ -45,40 +43,68 @@ mrqp_fw_err mrqp_fw_emcy_unpack(const mrqp_fw_frame *in, uint8_t *node, mrqp_fw_
   return MRQP_FW_OK;
 }
 
-const char *mrqp_fw_emcy_code_str(uint16_t code)
-{
+const char* mrqp_fw_emcy_code_str(uint16_t code) {
   switch (code) {
-  case MRQP_FW_EMCY_NO_ERROR: return "error reset or no error";
-  case MRQP_FW_EMCY_CONTINUOUS_OVER_CURRENT: return "continuous over-current";
-  case MRQP_FW_EMCY_DC_LINK_OVER_VOLTAGE: return "DC link over-voltage";
-  case MRQP_FW_EMCY_DC_LINK_UNDER_VOLTAGE: return "DC link under-voltage";
-  case MRQP_FW_EMCY_DEVICE_OVER_TEMPERATURE: return "excess temperature device";
-  case MRQP_FW_EMCY_SENSOR: return "sensor";
-  case MRQP_FW_EMCY_INCREMENTAL_SENSOR_1: return "incremental sensor 1 fault";
-  case MRQP_FW_EMCY_COMMUNICATION: return "communication";
-  case MRQP_FW_EMCY_CAN_OVERRUN: return "CAN overrun (objects lost)";
-  case MRQP_FW_EMCY_CAN_ERROR_PASSIVE: return "CAN in error passive mode";
-  case MRQP_FW_EMCY_HEARTBEAT_ERROR: return "life guard error or heartbeat error";
-  case MRQP_FW_EMCY_BUS_OFF_RECOVERED: return "recovered from bus off";
-  case MRQP_FW_EMCY_PDO_LENGTH_ERROR: return "PDO not processed due to length error";
-  case MRQP_FW_EMCY_PDO_LENGTH_EXCEEDED: return "PDO length exceeded";
-  case MRQP_FW_EMCY_RPDO_TIMEOUT: return "RPDO timeout";
-  case MRQP_FW_EMCY_FOLLOWING_ERROR: return "following error";
-  case MRQP_FW_EMCY_DEVICE_SPECIFIC: return "device specific";
-  default: break;
+    case MRQP_FW_EMCY_NO_ERROR:
+      return "error reset or no error";
+    case MRQP_FW_EMCY_CONTINUOUS_OVER_CURRENT:
+      return "continuous over-current";
+    case MRQP_FW_EMCY_DC_LINK_OVER_VOLTAGE:
+      return "DC link over-voltage";
+    case MRQP_FW_EMCY_DC_LINK_UNDER_VOLTAGE:
+      return "DC link under-voltage";
+    case MRQP_FW_EMCY_DEVICE_OVER_TEMPERATURE:
+      return "excess temperature device";
+    case MRQP_FW_EMCY_SENSOR:
+      return "sensor";
+    case MRQP_FW_EMCY_INCREMENTAL_SENSOR_1:
+      return "incremental sensor 1 fault";
+    case MRQP_FW_EMCY_COMMUNICATION:
+      return "communication";
+    case MRQP_FW_EMCY_CAN_OVERRUN:
+      return "CAN overrun (objects lost)";
+    case MRQP_FW_EMCY_CAN_ERROR_PASSIVE:
+      return "CAN in error passive mode";
+    case MRQP_FW_EMCY_HEARTBEAT_ERROR:
+      return "life guard error or heartbeat error";
+    case MRQP_FW_EMCY_BUS_OFF_RECOVERED:
+      return "recovered from bus off";
+    case MRQP_FW_EMCY_PDO_LENGTH_ERROR:
+      return "PDO not processed due to length error";
+    case MRQP_FW_EMCY_PDO_LENGTH_EXCEEDED:
+      return "PDO length exceeded";
+    case MRQP_FW_EMCY_RPDO_TIMEOUT:
+      return "RPDO timeout";
+    case MRQP_FW_EMCY_FOLLOWING_ERROR:
+      return "following error";
+    case MRQP_FW_EMCY_DEVICE_SPECIFIC:
+      return "device specific";
+    default:
+      break;
   }
   switch (code >> 12) {
-  case 0x1u: return "generic error";
-  case 0x2u: return "current";
-  case 0x3u: return "voltage";
-  case 0x4u: return "temperature";
-  case 0x5u: return "device hardware";
-  case 0x6u: return "device software";
-  case 0x7u: return "additional modules";
-  case 0x8u: return "monitoring";
-  case 0x9u: return "external error";
-  case 0xFu: return (code >> 8) == 0xFFu ? "device specific" : "additional functions";
-  default: break;
+    case 0x1u:
+      return "generic error";
+    case 0x2u:
+      return "current";
+    case 0x3u:
+      return "voltage";
+    case 0x4u:
+      return "temperature";
+    case 0x5u:
+      return "device hardware";
+    case 0x6u:
+      return "device software";
+    case 0x7u:
+      return "additional modules";
+    case 0x8u:
+      return "monitoring";
+    case 0x9u:
+      return "external error";
+    case 0xFu:
+      return (code >> 8) == 0xFFu ? "device specific" : "additional functions";
+    default:
+      break;
   }
   return "unknown emergency code";
 }

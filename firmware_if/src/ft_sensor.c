@@ -13,21 +13,18 @@
 #define FD_STATUS_AT 25u
 #define FD_CRC_AT 30u
 
-int mrqp_fw_ft_scale_valid(const mrqp_fw_ft_scale *s)
-{
+int mrqp_fw_ft_scale_valid(const mrqp_fw_ft_scale* s) {
   return s != NULL && mrqp_fw_isfinite_d(s->counts_per_n) && s->counts_per_n > 0.0 &&
          mrqp_fw_isfinite_d(s->counts_per_nm) && s->counts_per_nm > 0.0;
 }
 
-static double axis_scale(const mrqp_fw_ft_scale *s, unsigned axis)
-{
+static double axis_scale(const mrqp_fw_ft_scale* s, unsigned axis) {
   return axis < 3u ? s->counts_per_n : s->counts_per_nm;
 }
 
 /* Quantises the six channels into counts[] within [lo, hi]. Returns flags (NaN error or sat bits). */
-static mrqp_fw_pack_flags quantize6(const mrqp_fw_ft_scale *scale, const double w[6], int64_t lo, int64_t hi,
-                                    int64_t counts[6])
-{
+static mrqp_fw_pack_flags quantize6(const mrqp_fw_ft_scale* scale, const double w[6], int64_t lo, int64_t hi,
+                                    int64_t counts[6]) {
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   unsigned a;
   for (a = 0u; a < 6u; ++a) {
@@ -46,8 +43,8 @@ static mrqp_fw_pack_flags quantize6(const mrqp_fw_ft_scale *scale, const double 
   return flags;
 }
 
-static mrqp_fw_pack_flags check_pack_args(const mrqp_fw_ft_scale *scale, unsigned node, const mrqp_fw_ft_sample *s)
-{
+static mrqp_fw_pack_flags check_pack_args(const mrqp_fw_ft_scale* scale, unsigned node,
+                                          const mrqp_fw_ft_sample* s) {
   if (s == NULL || !mrqp_fw_node_valid(node) || (s->status & MRQP_FW_FT_STATUS_RESERVED) != 0u) {
     return MRQP_FW_PACK_ERR_ARG;
   }
@@ -57,9 +54,9 @@ static mrqp_fw_pack_flags check_pack_args(const mrqp_fw_ft_scale *scale, unsigne
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_ft_pack_classic(const mrqp_fw_ft_scale *scale, unsigned node, const mrqp_fw_ft_sample *s,
-                                           mrqp_fw_frame *forces, mrqp_fw_frame *moments)
-{
+mrqp_fw_pack_flags mrqp_fw_ft_pack_classic(const mrqp_fw_ft_scale* scale, unsigned node,
+                                           const mrqp_fw_ft_sample* s, mrqp_fw_frame* forces,
+                                           mrqp_fw_frame* moments) {
   int64_t c[6];
   mrqp_fw_pack_flags flags;
   uint8_t status;
@@ -91,9 +88,8 @@ mrqp_fw_pack_flags mrqp_fw_ft_pack_classic(const mrqp_fw_ft_scale *scale, unsign
   return flags;
 }
 
-mrqp_fw_err mrqp_fw_ft_unpack_half(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                                   mrqp_fw_ft_half *half)
-{
+mrqp_fw_err mrqp_fw_ft_unpack_half(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                                   mrqp_fw_ft_half* half) {
   unsigned a;
   int is_moments;
   mrqp_fw_err e = mrqp_fw_classic_envelope(in);
@@ -132,8 +128,8 @@ mrqp_fw_err mrqp_fw_ft_unpack_half(const mrqp_fw_ft_scale *scale, const mrqp_fw_
   return MRQP_FW_OK;
 }
 
-mrqp_fw_err mrqp_fw_ft_join(const mrqp_fw_ft_half *forces, const mrqp_fw_ft_half *moments, mrqp_fw_ft_sample *s)
-{
+mrqp_fw_err mrqp_fw_ft_join(const mrqp_fw_ft_half* forces, const mrqp_fw_ft_half* moments,
+                            mrqp_fw_ft_sample* s) {
   unsigned a;
   if (forces == NULL || moments == NULL || s == NULL) {
     return MRQP_FW_ERR_NULL;
@@ -153,9 +149,8 @@ mrqp_fw_err mrqp_fw_ft_join(const mrqp_fw_ft_half *forces, const mrqp_fw_ft_half
   return MRQP_FW_OK;
 }
 
-mrqp_fw_err mrqp_fw_ft_unpack_classic(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *forces,
-                                      const mrqp_fw_frame *moments, unsigned node, mrqp_fw_ft_sample *s)
-{
+mrqp_fw_err mrqp_fw_ft_unpack_classic(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* forces,
+                                      const mrqp_fw_frame* moments, unsigned node, mrqp_fw_ft_sample* s) {
   mrqp_fw_ft_half f;
   mrqp_fw_ft_half m;
   mrqp_fw_err e = mrqp_fw_ft_unpack_half(scale, forces, node, &f);
@@ -169,9 +164,8 @@ mrqp_fw_err mrqp_fw_ft_unpack_classic(const mrqp_fw_ft_scale *scale, const mrqp_
   return mrqp_fw_ft_join(&f, &m, s);
 }
 
-mrqp_fw_pack_flags mrqp_fw_ft_pack_fd(const mrqp_fw_ft_scale *scale, unsigned node, const mrqp_fw_ft_sample *s,
-                                      mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_ft_pack_fd(const mrqp_fw_ft_scale* scale, unsigned node,
+                                      const mrqp_fw_ft_sample* s, mrqp_fw_frame* out) {
   int64_t c[6];
   mrqp_fw_pack_flags flags;
   unsigned a;
@@ -196,9 +190,8 @@ mrqp_fw_pack_flags mrqp_fw_ft_pack_fd(const mrqp_fw_ft_scale *scale, unsigned no
   return flags;
 }
 
-mrqp_fw_err mrqp_fw_ft_unpack_fd(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                                 mrqp_fw_ft_sample *s)
-{
+mrqp_fw_err mrqp_fw_ft_unpack_fd(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                                 mrqp_fw_ft_sample* s) {
   unsigned a;
   mrqp_fw_err e;
   if (in == NULL || s == NULL) {
@@ -233,8 +226,7 @@ mrqp_fw_err mrqp_fw_ft_unpack_fd(const mrqp_fw_ft_scale *scale, const mrqp_fw_fr
   return MRQP_FW_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_ft_pack_tare(unsigned node, unsigned command, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_ft_pack_tare(unsigned node, unsigned command, mrqp_fw_frame* out) {
   if (out == NULL || !mrqp_fw_node_valid(node) ||
       (command != MRQP_FW_FT_CMD_TARE && command != MRQP_FW_FT_CMD_CLEAR_TARE)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
@@ -245,8 +237,7 @@ mrqp_fw_pack_flags mrqp_fw_ft_pack_tare(unsigned node, unsigned command, mrqp_fw
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_ft_unpack_tare(const mrqp_fw_frame *in, unsigned node, uint8_t *command)
-{
+mrqp_fw_err mrqp_fw_ft_unpack_tare(const mrqp_fw_frame* in, unsigned node, uint8_t* command) {
   mrqp_fw_err e;
   if (in == NULL || command == NULL) {
     return MRQP_FW_ERR_NULL;

@@ -10,51 +10,41 @@
 
 #define FD_FLAGS ((uint8_t)(MRQP_FW_FRAME_FD | MRQP_FW_FRAME_BRS))
 
-static int lsb_ok(float lsb)
-{
-  return mrqp_fw_isfinite_f(lsb) && lsb > 0.0f;
-}
+static int lsb_ok(float lsb) { return mrqp_fw_isfinite_f(lsb) && lsb > 0.0f; }
 
-int mrqp_fw_hand_scale_valid(const mrqp_fw_hand_scale *s)
-{
+int mrqp_fw_hand_scale_valid(const mrqp_fw_hand_scale* s) {
   return s != NULL && lsb_ok(s->position_lsb) && lsb_ok(s->velocity_lsb) && lsb_ok(s->torque_lsb);
 }
 
-static uint8_t frame_len(unsigned header, unsigned n)
-{
+static uint8_t frame_len(unsigned header, unsigned n) {
   if (n > MRQP_FW_HAND_FD_MAX_JOINTS) {
     return 0u;
   }
   return mrqp_fw_fd_len_round_up(header + MRQP_FW_HAND_FD_JOINT_LEN * n + MRQP_FW_HAND_FD_CRC_LEN);
 }
 
-uint8_t mrqp_fw_hand_cmd_len(unsigned n)
-{
-  return frame_len(MRQP_FW_HAND_FD_CMD_HEADER_LEN, n);
-}
+uint8_t mrqp_fw_hand_cmd_len(unsigned n) { return frame_len(MRQP_FW_HAND_FD_CMD_HEADER_LEN, n); }
 
-uint8_t mrqp_fw_hand_fb_len(unsigned n)
-{
-  return frame_len(MRQP_FW_HAND_FD_FB_HEADER_LEN, n);
-}
+uint8_t mrqp_fw_hand_fb_len(unsigned n) { return frame_len(MRQP_FW_HAND_FD_FB_HEADER_LEN, n); }
 
-unsigned mrqp_fw_hand_frames_needed(unsigned joints)
-{
+unsigned mrqp_fw_hand_frames_needed(unsigned joints) {
   return (joints + MRQP_FW_HAND_FD_MAX_JOINTS - 1u) / MRQP_FW_HAND_FD_MAX_JOINTS;
 }
 
 /* Encodes n joint records at data + offset. Returns error flags (NaN) or saturation flags. */
-static mrqp_fw_pack_flags put_joints(const mrqp_fw_hand_scale *s, const mrqp_fw_hand_joint *j, unsigned n,
-                                     uint8_t *data, uint32_t *sat_joints)
-{
+static mrqp_fw_pack_flags put_joints(const mrqp_fw_hand_scale* s, const mrqp_fw_hand_joint* j, unsigned n,
+                                     uint8_t* data, uint32_t* sat_joints) {
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   uint32_t joints = 0u;
   unsigned i;
   for (i = 0u; i < n; ++i) {
     int32_t p = 0, v = 0, t = 0;
-    mrqp_fw_conv rp = mrqp_fw_quantize_fixed((double)j[i].position, (double)s->position_lsb, MRQP_FW_HAND_P_BITS, &p);
-    mrqp_fw_conv rv = mrqp_fw_quantize_fixed((double)j[i].velocity, (double)s->velocity_lsb, MRQP_FW_HAND_V_BITS, &v);
-    mrqp_fw_conv rt = mrqp_fw_quantize_fixed((double)j[i].torque, (double)s->torque_lsb, MRQP_FW_HAND_T_BITS, &t);
+    mrqp_fw_conv rp =
+        mrqp_fw_quantize_fixed((double)j[i].position, (double)s->position_lsb, MRQP_FW_HAND_P_BITS, &p);
+    mrqp_fw_conv rv =
+        mrqp_fw_quantize_fixed((double)j[i].velocity, (double)s->velocity_lsb, MRQP_FW_HAND_V_BITS, &v);
+    mrqp_fw_conv rt =
+        mrqp_fw_quantize_fixed((double)j[i].torque, (double)s->torque_lsb, MRQP_FW_HAND_T_BITS, &t);
     unsigned off = MRQP_FW_HAND_FD_JOINT_LEN * 8u * i;
     if (rp == MRQP_FW_CONV_NAN || rv == MRQP_FW_CONV_NAN || rt == MRQP_FW_CONV_NAN) {
       return MRQP_FW_PACK_ERR_NAN;
@@ -82,8 +72,8 @@ static mrqp_fw_pack_flags put_joints(const mrqp_fw_hand_scale *s, const mrqp_fw_
 }
 
 /* Decodes n joint records; ERR_RANGE on a reserved (most negative) code. */
-static mrqp_fw_err get_joints(const mrqp_fw_hand_scale *s, const uint8_t *data, unsigned n, mrqp_fw_hand_joint *j)
-{
+static mrqp_fw_err get_joints(const mrqp_fw_hand_scale* s, const uint8_t* data, unsigned n,
+                              mrqp_fw_hand_joint* j) {
   unsigned i;
   for (i = 0u; i < n; ++i) {
     unsigned off = MRQP_FW_HAND_FD_JOINT_LEN * 8u * i;
@@ -93,28 +83,29 @@ static mrqp_fw_err get_joints(const mrqp_fw_hand_scale *s, const uint8_t *data, 
     if (p == 0x8000u || v == 0x800u || t == 0x800u) {
       return MRQP_FW_ERR_RANGE;
     }
-    j[i].position = (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(p, MRQP_FW_HAND_P_BITS), (double)s->position_lsb);
-    j[i].velocity = (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(v, MRQP_FW_HAND_V_BITS), (double)s->velocity_lsb);
-    j[i].torque = (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(t, MRQP_FW_HAND_T_BITS), (double)s->torque_lsb);
+    j[i].position =
+        (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(p, MRQP_FW_HAND_P_BITS), (double)s->position_lsb);
+    j[i].velocity =
+        (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(v, MRQP_FW_HAND_V_BITS), (double)s->velocity_lsb);
+    j[i].torque =
+        (float)mrqp_fw_dequantize_fixed(mrqp_fw_sign_extend(t, MRQP_FW_HAND_T_BITS), (double)s->torque_lsb);
   }
   return MRQP_FW_OK;
 }
 
-static void put_crc(mrqp_fw_frame *out)
-{
+static void put_crc(mrqp_fw_frame* out) {
   uint16_t crc = mrqp_fw_crc16(out->data, (size_t)out->len - MRQP_FW_HAND_FD_CRC_LEN);
   mrqp_fw_put_u16be(&out->data[out->len - MRQP_FW_HAND_FD_CRC_LEN], crc);
 }
 
-static int header_args_ok(unsigned board, unsigned mode, unsigned first, unsigned count)
-{
-  return board <= MRQP_FW_HAND_BOARD_MAX && mode <= MRQP_FW_HAND_MODE_HOLD && count <= MRQP_FW_HAND_FD_MAX_JOINTS &&
-         first + count <= MRQP_FW_HAND_MAX_JOINTS;
+static int header_args_ok(unsigned board, unsigned mode, unsigned first, unsigned count) {
+  return board <= MRQP_FW_HAND_BOARD_MAX && mode <= MRQP_FW_HAND_MODE_HOLD &&
+         count <= MRQP_FW_HAND_FD_MAX_JOINTS && first + count <= MRQP_FW_HAND_MAX_JOINTS;
 }
 
-mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale *scale, unsigned board, const mrqp_fw_hand_cmd *cmd,
-                                         mrqp_fw_frame *out, uint32_t *saturated_joints)
-{
+mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale* scale, unsigned board,
+                                         const mrqp_fw_hand_cmd* cmd, mrqp_fw_frame* out,
+                                         uint32_t* saturated_joints) {
   mrqp_fw_pack_flags flags;
   if (saturated_joints != NULL) {
     *saturated_joints = 0u;
@@ -130,7 +121,8 @@ mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale *scale, unsign
   out->data[2] = (uint8_t)((MRQP_FW_HAND_FD_VERSION << 4) | cmd->mode);
   out->data[3] = cmd->first_joint;
   out->data[4] = cmd->count;
-  flags = put_joints(scale, cmd->joint, cmd->count, &out->data[MRQP_FW_HAND_FD_CMD_HEADER_LEN], saturated_joints);
+  flags =
+      put_joints(scale, cmd->joint, cmd->count, &out->data[MRQP_FW_HAND_FD_CMD_HEADER_LEN], saturated_joints);
   if (mrqp_fw_pack_failed(flags)) {
     if (saturated_joints != NULL) {
       *saturated_joints = 0u;
@@ -141,9 +133,9 @@ mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale *scale, unsign
   return flags;
 }
 
-mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale *scale, unsigned board, const mrqp_fw_hand_fb *fb,
-                                        mrqp_fw_frame *out, uint32_t *saturated_joints)
-{
+mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale* scale, unsigned board,
+                                        const mrqp_fw_hand_fb* fb, mrqp_fw_frame* out,
+                                        uint32_t* saturated_joints) {
   mrqp_fw_pack_flags flags;
   if (saturated_joints != NULL) {
     *saturated_joints = 0u;
@@ -162,7 +154,8 @@ mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale *scale, unsigne
   out->data[4] = fb->status;
   out->data[5] = fb->first_joint;
   out->data[6] = fb->count;
-  flags = put_joints(scale, fb->joint, fb->count, &out->data[MRQP_FW_HAND_FD_FB_HEADER_LEN], saturated_joints);
+  flags =
+      put_joints(scale, fb->joint, fb->count, &out->data[MRQP_FW_HAND_FD_FB_HEADER_LEN], saturated_joints);
   if (mrqp_fw_pack_failed(flags)) {
     if (saturated_joints != NULL) {
       *saturated_joints = 0u;
@@ -177,9 +170,8 @@ mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale *scale, unsigne
  * Common checks: envelope, CRC, version (byte `ver_at`), count (byte `count_at`) and length,
  * zero padding. On success *count holds the joint count.
  */
-static mrqp_fw_err check_frame(const mrqp_fw_hand_scale *scale, const mrqp_fw_frame *in, uint32_t id,
-                               unsigned header, unsigned ver_at, unsigned count_at, unsigned *count)
-{
+static mrqp_fw_err check_frame(const mrqp_fw_hand_scale* scale, const mrqp_fw_frame* in, uint32_t id,
+                               unsigned header, unsigned ver_at, unsigned count_at, unsigned* count) {
   unsigned n;
   unsigned i;
   unsigned used;
@@ -218,9 +210,8 @@ static mrqp_fw_err check_frame(const mrqp_fw_hand_scale *scale, const mrqp_fw_fr
   return MRQP_FW_OK;
 }
 
-mrqp_fw_err mrqp_fw_hand_unpack_cmd(const mrqp_fw_hand_scale *scale, const mrqp_fw_frame *in, unsigned board,
-                                    mrqp_fw_hand_cmd *cmd)
-{
+mrqp_fw_err mrqp_fw_hand_unpack_cmd(const mrqp_fw_hand_scale* scale, const mrqp_fw_frame* in, unsigned board,
+                                    mrqp_fw_hand_cmd* cmd) {
   unsigned n = 0u;
   unsigned mode;
   unsigned first;
@@ -253,9 +244,8 @@ mrqp_fw_err mrqp_fw_hand_unpack_cmd(const mrqp_fw_hand_scale *scale, const mrqp_
   return MRQP_FW_OK;
 }
 
-mrqp_fw_err mrqp_fw_hand_unpack_fb(const mrqp_fw_hand_scale *scale, const mrqp_fw_frame *in, unsigned board,
-                                   mrqp_fw_hand_fb *fb)
-{
+mrqp_fw_err mrqp_fw_hand_unpack_fb(const mrqp_fw_hand_scale* scale, const mrqp_fw_frame* in, unsigned board,
+                                   mrqp_fw_hand_fb* fb) {
   unsigned n = 0u;
   unsigned mode;
   unsigned first;

@@ -18,15 +18,13 @@
 #define IMU_RATE_SAT_MASK (MRQP_FW_IMU_SAT_WX | MRQP_FW_IMU_SAT_WY | MRQP_FW_IMU_SAT_WZ)
 #define IMU_FORCE_SAT_MASK (MRQP_FW_IMU_SAT_AX | MRQP_FW_IMU_SAT_AY | MRQP_FW_IMU_SAT_AZ)
 
-int mrqp_fw_imu_scale_valid(const mrqp_fw_imu_scale *s)
-{
+int mrqp_fw_imu_scale_valid(const mrqp_fw_imu_scale* s) {
   return s != NULL && mrqp_fw_isfinite_d(s->counts_per_rad_s) && s->counts_per_rad_s > 0.0 &&
          mrqp_fw_isfinite_d(s->counts_per_mps2) && s->counts_per_mps2 > 0.0;
 }
 
 /* One i16 channel: value * k rounded into [-32767, 32767] at data[at]; sets `bit` when saturated. */
-static mrqp_fw_pack_flags put_channel(double value, double k, uint8_t *data, mrqp_fw_pack_flags bit)
-{
+static mrqp_fw_pack_flags put_channel(double value, double k, uint8_t* data, mrqp_fw_pack_flags bit) {
   int64_t code = 0;
   const mrqp_fw_conv r = mrqp_fw_quantize_int(value * k, -32767, 32767, &code);
   if (r == MRQP_FW_CONV_NAN) {
@@ -36,9 +34,8 @@ static mrqp_fw_pack_flags put_channel(double value, double k, uint8_t *data, mrq
   return r == MRQP_FW_CONV_OK ? MRQP_FW_PACK_OK : bit;
 }
 
-mrqp_fw_pack_flags mrqp_fw_imu_pack(const mrqp_fw_imu_scale *scale, unsigned node, const mrqp_fw_imu_sample *s,
-                                    mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_imu_pack(const mrqp_fw_imu_scale* scale, unsigned node,
+                                    const mrqp_fw_imu_sample* s, mrqp_fw_frame* out) {
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   unsigned a;
   if (out == NULL) {
@@ -73,15 +70,15 @@ mrqp_fw_pack_flags mrqp_fw_imu_pack(const mrqp_fw_imu_scale *scale, unsigned nod
                          (mrqp_fw_pack_flags)MRQP_FW_IMU_SAT_AX << a);
   }
   out->data[IMU_SEQ_AT] = s->seq;
-  out->data[IMU_STATUS_AT] =
-      (uint8_t)(s->status | ((flags & (IMU_RATE_SAT_MASK | IMU_FORCE_SAT_MASK)) != 0u ? MRQP_FW_IMU_STATUS_OVERRANGE : 0u));
+  out->data[IMU_STATUS_AT] = (uint8_t)(s->status | ((flags & (IMU_RATE_SAT_MASK | IMU_FORCE_SAT_MASK)) != 0u
+                                                        ? MRQP_FW_IMU_STATUS_OVERRANGE
+                                                        : 0u));
   mrqp_fw_put_u16be(&out->data[IMU_CRC_AT], mrqp_fw_crc16(out->data, IMU_CRC_AT));
   return flags;
 }
 
-mrqp_fw_err mrqp_fw_imu_unpack(const mrqp_fw_imu_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                               mrqp_fw_imu_sample *s)
-{
+mrqp_fw_err mrqp_fw_imu_unpack(const mrqp_fw_imu_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                               mrqp_fw_imu_sample* s) {
   unsigned a;
   double norm2 = 0.0;
   double q[4];
@@ -120,10 +117,10 @@ mrqp_fw_err mrqp_fw_imu_unpack(const mrqp_fw_imu_scale *scale, const mrqp_fw_fra
   }
   memcpy(s->orientation, q, sizeof q);
   for (a = 0u; a < 3u; ++a) {
-    s->angular_velocity[a] =
-        (double)mrqp_fw_u16_to_i16(mrqp_fw_get_u16le(&in->data[IMU_RATE_AT + 2u * a])) / scale->counts_per_rad_s;
-    s->specific_force[a] =
-        (double)mrqp_fw_u16_to_i16(mrqp_fw_get_u16le(&in->data[IMU_FORCE_AT + 2u * a])) / scale->counts_per_mps2;
+    s->angular_velocity[a] = (double)mrqp_fw_u16_to_i16(mrqp_fw_get_u16le(&in->data[IMU_RATE_AT + 2u * a])) /
+                             scale->counts_per_rad_s;
+    s->specific_force[a] = (double)mrqp_fw_u16_to_i16(mrqp_fw_get_u16le(&in->data[IMU_FORCE_AT + 2u * a])) /
+                           scale->counts_per_mps2;
   }
   s->seq = in->data[IMU_SEQ_AT];
   s->status = in->data[IMU_STATUS_AT];

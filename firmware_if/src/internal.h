@@ -8,15 +8,13 @@
 #include "mrqp/firmware_if/status.h"
 
 /* Clears `out` (if any) and returns the error flags: a failed pack never leaves a valid frame. */
-static inline mrqp_fw_pack_flags mrqp_fw_fail(mrqp_fw_frame *out, mrqp_fw_pack_flags flags)
-{
+static inline mrqp_fw_pack_flags mrqp_fw_fail(mrqp_fw_frame* out, mrqp_fw_pack_flags flags) {
   mrqp_fw_frame_clear(out);
   return flags;
 }
 
 /* Envelope check of a classic frame whose id is taken from the frame itself. */
-static inline mrqp_fw_err mrqp_fw_classic_envelope(const mrqp_fw_frame *in)
-{
+static inline mrqp_fw_err mrqp_fw_classic_envelope(const mrqp_fw_frame* in) {
   if (in == NULL) {
     return MRQP_FW_ERR_NULL;
   }

@@ -19,26 +19,22 @@
 #define SPECIAL_DISABLE 0xFDu
 #define SPECIAL_ZERO 0xFEu
 
-static int range_ok(float lo, float hi)
-{
+static int range_ok(float lo, float hi) {
   return mrqp_fw_isfinite_f(lo) && mrqp_fw_isfinite_f(hi) && lo < hi;
 }
 
-int mrqp_fw_mit_ranges_valid(const mrqp_fw_mit_ranges *r)
-{
+int mrqp_fw_mit_ranges_valid(const mrqp_fw_mit_ranges* r) {
   return r != NULL && range_ok(r->p_min, r->p_max) && range_ok(r->v_min, r->v_max) &&
          range_ok(r->kp_min, r->kp_max) && range_ok(r->kd_min, r->kd_max) && range_ok(r->t_min, r->t_max);
 }
 
-static int motor_id_ok(unsigned id)
-{
+static int motor_id_ok(unsigned id) {
   return id >= MRQP_FW_MIT_MOTOR_ID_MIN && id <= MRQP_FW_MIT_MOTOR_ID_MAX;
 }
 
 /* Quantises one field; sets `sat_bit` in *flags when saturated. Returns 0 on NaN. */
-static int field(float x, float lo, float hi, unsigned bits, uint32_t *code, mrqp_fw_pack_flags sat_bit,
-                 mrqp_fw_pack_flags *flags)
-{
+static int field(float x, float lo, float hi, unsigned bits, uint32_t* code, mrqp_fw_pack_flags sat_bit,
+                 mrqp_fw_pack_flags* flags) {
   mrqp_fw_conv r = mrqp_fw_quantize_linear((double)x, (double)lo, (double)hi, bits, code);
   if (r == MRQP_FW_CONV_NAN || r == MRQP_FW_CONV_BAD_SCALE) {
     return 0;
@@ -49,14 +45,12 @@ static int field(float x, float lo, float hi, unsigned bits, uint32_t *code, mrq
   return 1;
 }
 
-static float unfield(uint32_t code, float lo, float hi, unsigned bits)
-{
+static float unfield(uint32_t code, float lo, float hi, unsigned bits) {
   return (float)mrqp_fw_dequantize_linear(code, (double)lo, (double)hi, bits);
 }
 
-mrqp_fw_pack_flags mrqp_fw_mit_pack_cmd(const mrqp_fw_mit_ranges *r, unsigned motor_id, const mrqp_fw_mit_cmd *cmd,
-                                        mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_mit_pack_cmd(const mrqp_fw_mit_ranges* r, unsigned motor_id,
+                                        const mrqp_fw_mit_cmd* cmd, mrqp_fw_frame* out) {
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   uint32_t p = 0u, v = 0u, kp = 0u, kd = 0u, t = 0u;
   if (out == NULL || cmd == NULL || !motor_id_ok(motor_id)) {
@@ -86,17 +80,23 @@ mrqp_fw_pack_flags mrqp_fw_mit_pack_cmd(const mrqp_fw_mit_ranges *r, unsigned mo
   return flags;
 }
 
-mrqp_fw_pack_flags mrqp_fw_mit_pack_special(unsigned motor_id, mrqp_fw_mit_kind kind, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_mit_pack_special(unsigned motor_id, mrqp_fw_mit_kind kind, mrqp_fw_frame* out) {
   uint8_t last;
   unsigned i;
   switch (kind) {
-  case MRQP_FW_MIT_KIND_ENABLE: last = SPECIAL_ENABLE; break;
-  case MRQP_FW_MIT_KIND_DISABLE: last = SPECIAL_DISABLE; break;
-  case MRQP_FW_MIT_KIND_ZERO: last = SPECIAL_ZERO; break;
-  case MRQP_FW_MIT_KIND_COMMAND:
-  case MRQP_FW_MIT_KIND_INVALID:
-  default: return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
+    case MRQP_FW_MIT_KIND_ENABLE:
+      last = SPECIAL_ENABLE;
+      break;
+    case MRQP_FW_MIT_KIND_DISABLE:
+      last = SPECIAL_DISABLE;
+      break;
+    case MRQP_FW_MIT_KIND_ZERO:
+      last = SPECIAL_ZERO;
+      break;
+    case MRQP_FW_MIT_KIND_COMMAND:
+    case MRQP_FW_MIT_KIND_INVALID:
+    default:
+      return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
   if (out == NULL || !motor_id_ok(motor_id)) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
@@ -109,8 +109,7 @@ mrqp_fw_pack_flags mrqp_fw_mit_pack_special(unsigned motor_id, mrqp_fw_mit_kind 
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_mit_kind mrqp_fw_mit_classify(const mrqp_fw_frame *in)
-{
+mrqp_fw_mit_kind mrqp_fw_mit_classify(const mrqp_fw_frame* in) {
   unsigned i;
   if (mrqp_fw_classic_envelope(in) != MRQP_FW_OK || !motor_id_ok(in->id) || in->len != MRQP_FW_MIT_CMD_LEN) {
     return MRQP_FW_MIT_KIND_INVALID;
@@ -121,17 +120,20 @@ mrqp_fw_mit_kind mrqp_fw_mit_classify(const mrqp_fw_frame *in)
     }
   }
   switch (in->data[7]) {
-  case SPECIAL_ENABLE: return MRQP_FW_MIT_KIND_ENABLE;
-  case SPECIAL_DISABLE: return MRQP_FW_MIT_KIND_DISABLE;
-  case SPECIAL_ZERO: return MRQP_FW_MIT_KIND_ZERO;
-  default: break;
+    case SPECIAL_ENABLE:
+      return MRQP_FW_MIT_KIND_ENABLE;
+    case SPECIAL_DISABLE:
+      return MRQP_FW_MIT_KIND_DISABLE;
+    case SPECIAL_ZERO:
+      return MRQP_FW_MIT_KIND_ZERO;
+    default:
+      break;
   }
   return MRQP_FW_MIT_KIND_COMMAND;
 }
 
-mrqp_fw_err mrqp_fw_mit_unpack_cmd(const mrqp_fw_mit_ranges *r, const mrqp_fw_frame *in, uint8_t *motor_id,
-                                   mrqp_fw_mit_cmd *cmd)
-{
+mrqp_fw_err mrqp_fw_mit_unpack_cmd(const mrqp_fw_mit_ranges* r, const mrqp_fw_frame* in, uint8_t* motor_id,
+                                   mrqp_fw_mit_cmd* cmd) {
   mrqp_fw_err e = mrqp_fw_classic_envelope(in);
   if (e != MRQP_FW_OK) {
     return e;
@@ -151,22 +153,24 @@ mrqp_fw_err mrqp_fw_mit_unpack_cmd(const mrqp_fw_mit_ranges *r, const mrqp_fw_fr
   if (!mrqp_fw_mit_ranges_valid(r)) {
     return MRQP_FW_ERR_CONFIG;
   }
-  cmd->p = unfield(mrqp_fw_get_bits_be(in->data, CMD_P_OFF, MRQP_FW_MIT_P_BITS), r->p_min, r->p_max, MRQP_FW_MIT_P_BITS);
-  cmd->v = unfield(mrqp_fw_get_bits_be(in->data, CMD_V_OFF, MRQP_FW_MIT_V_BITS), r->v_min, r->v_max, MRQP_FW_MIT_V_BITS);
+  cmd->p = unfield(mrqp_fw_get_bits_be(in->data, CMD_P_OFF, MRQP_FW_MIT_P_BITS), r->p_min, r->p_max,
+                   MRQP_FW_MIT_P_BITS);
+  cmd->v = unfield(mrqp_fw_get_bits_be(in->data, CMD_V_OFF, MRQP_FW_MIT_V_BITS), r->v_min, r->v_max,
+                   MRQP_FW_MIT_V_BITS);
   cmd->kp = unfield(mrqp_fw_get_bits_be(in->data, CMD_KP_OFF, MRQP_FW_MIT_KP_BITS), r->kp_min, r->kp_max,
                     MRQP_FW_MIT_KP_BITS);
   cmd->kd = unfield(mrqp_fw_get_bits_be(in->data, CMD_KD_OFF, MRQP_FW_MIT_KD_BITS), r->kd_min, r->kd_max,
                     MRQP_FW_MIT_KD_BITS);
-  cmd->t = unfield(mrqp_fw_get_bits_be(in->data, CMD_T_OFF, MRQP_FW_MIT_T_BITS), r->t_min, r->t_max, MRQP_FW_MIT_T_BITS);
+  cmd->t = unfield(mrqp_fw_get_bits_be(in->data, CMD_T_OFF, MRQP_FW_MIT_T_BITS), r->t_min, r->t_max,
+                   MRQP_FW_MIT_T_BITS);
   if (motor_id != NULL) {
     *motor_id = (uint8_t)in->id;
   }
   return MRQP_FW_OK;
 }
 
-mrqp_fw_pack_flags mrqp_fw_mit_pack_reply(const mrqp_fw_mit_ranges *r, const mrqp_fw_mit_reply *reply,
-                                          mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_mit_pack_reply(const mrqp_fw_mit_ranges* r, const mrqp_fw_mit_reply* reply,
+                                          mrqp_fw_frame* out) {
   mrqp_fw_pack_flags flags = MRQP_FW_PACK_OK;
   uint32_t p = 0u, v = 0u, t = 0u;
   if (out == NULL || reply == NULL || !motor_id_ok(reply->motor_id)) {
@@ -188,8 +192,8 @@ mrqp_fw_pack_flags mrqp_fw_mit_pack_reply(const mrqp_fw_mit_ranges *r, const mrq
   return flags;
 }
 
-mrqp_fw_err mrqp_fw_mit_unpack_reply(const mrqp_fw_mit_ranges *r, const mrqp_fw_frame *in, mrqp_fw_mit_reply *reply)
-{
+mrqp_fw_err mrqp_fw_mit_unpack_reply(const mrqp_fw_mit_ranges* r, const mrqp_fw_frame* in,
+                                     mrqp_fw_mit_reply* reply) {
   mrqp_fw_err e = mrqp_fw_frame_expect(in, MRQP_FW_MIT_MASTER_ID, MRQP_FW_MIT_REPLY_LEN, 0);
   if (e != MRQP_FW_OK) {
     return e;

@@ -3,37 +3,32 @@
 
 #include <string.h>
 
-int mrqp_fw_isnan_d(double x)
-{
+int mrqp_fw_isnan_d(double x) {
   uint64_t bits;
   memcpy(&bits, &x, sizeof(bits));
   return (bits & 0x7FF0000000000000u) == 0x7FF0000000000000u && (bits & 0x000FFFFFFFFFFFFFu) != 0u;
 }
 
-int mrqp_fw_isnan_f(float x)
-{
+int mrqp_fw_isnan_f(float x) {
   uint32_t bits;
   memcpy(&bits, &x, sizeof(bits));
   return (bits & 0x7F800000u) == 0x7F800000u && (bits & 0x007FFFFFu) != 0u;
 }
 
-int mrqp_fw_isfinite_d(double x)
-{
+int mrqp_fw_isfinite_d(double x) {
   uint64_t bits;
   memcpy(&bits, &x, sizeof(bits));
   return (bits & 0x7FF0000000000000u) != 0x7FF0000000000000u;
 }
 
-int mrqp_fw_isfinite_f(float x)
-{
+int mrqp_fw_isfinite_f(float x) {
   uint32_t bits;
   memcpy(&bits, &x, sizeof(bits));
   return (bits & 0x7F800000u) != 0x7F800000u;
 }
 
 /* Round half away from zero; |x| < 2^62. x - trunc(x) is exact for doubles. */
-static int64_t round_away(double x)
-{
+static int64_t round_away(double x) {
   int64_t t = (int64_t)x; /* truncation toward zero */
   double frac = x - (double)t;
   if (frac >= 0.5) {
@@ -44,8 +39,7 @@ static int64_t round_away(double x)
   return t;
 }
 
-mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t *out)
-{
+mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t* out) {
   if (mrqp_fw_isnan_d(x)) {
     return MRQP_FW_CONV_NAN;
   }
@@ -68,13 +62,9 @@ mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t *out
   return MRQP_FW_CONV_OK;
 }
 
-static double max_code(unsigned bits)
-{
-  return (double)((((uint64_t)1u) << bits) - 1u);
-}
+static double max_code(unsigned bits) { return (double)((((uint64_t)1u) << bits) - 1u); }
 
-mrqp_fw_conv mrqp_fw_quantize_linear(double x, double min, double max, unsigned bits, uint32_t *code)
-{
+mrqp_fw_conv mrqp_fw_quantize_linear(double x, double min, double max, unsigned bits, uint32_t* code) {
   double top;
   int64_t c = 0;
   mrqp_fw_conv r;
@@ -92,13 +82,11 @@ mrqp_fw_conv mrqp_fw_quantize_linear(double x, double min, double max, unsigned 
   return r;
 }
 
-double mrqp_fw_dequantize_linear(uint32_t code, double min, double max, unsigned bits)
-{
+double mrqp_fw_dequantize_linear(uint32_t code, double min, double max, unsigned bits) {
   return min + (double)code * (max - min) / max_code(bits);
 }
 
-mrqp_fw_conv mrqp_fw_quantize_fixed(double x, double lsb, unsigned bits, int32_t *code)
-{
+mrqp_fw_conv mrqp_fw_quantize_fixed(double x, double lsb, unsigned bits, int32_t* code) {
   int64_t lim;
   int64_t c = 0;
   mrqp_fw_conv r;
@@ -114,7 +102,4 @@ mrqp_fw_conv mrqp_fw_quantize_fixed(double x, double lsb, unsigned bits, int32_t
   return r;
 }
 
-double mrqp_fw_dequantize_fixed(int32_t code, double lsb)
-{
-  return (double)code * lsb;
-}
+double mrqp_fw_dequantize_fixed(int32_t code, double lsb) { return (double)code * lsb; }

@@ -4,8 +4,7 @@
 #include "internal.h"
 #include "mrqp/firmware_if/canopen_ids.h"
 
-mrqp_fw_pack_flags mrqp_fw_sync_pack(unsigned counter, mrqp_fw_frame *out)
-{
+mrqp_fw_pack_flags mrqp_fw_sync_pack(unsigned counter, mrqp_fw_frame* out) {
   if (out == NULL || counter > MRQP_FW_SYNC_COUNTER_MAX) {
     return mrqp_fw_fail(out, MRQP_FW_PACK_ERR_ARG);
   }
@@ -14,8 +13,7 @@ mrqp_fw_pack_flags mrqp_fw_sync_pack(unsigned counter, mrqp_fw_frame *out)
   return MRQP_FW_PACK_OK;
 }
 
-mrqp_fw_err mrqp_fw_sync_unpack(const mrqp_fw_frame *in, uint8_t *counter)
-{
+mrqp_fw_err mrqp_fw_sync_unpack(const mrqp_fw_frame* in, uint8_t* counter) {
   mrqp_fw_err e = mrqp_fw_classic_envelope(in);
   if (e != MRQP_FW_OK) {
     return e;
@@ -36,8 +34,7 @@ mrqp_fw_err mrqp_fw_sync_unpack(const mrqp_fw_frame *in, uint8_t *counter)
   return MRQP_FW_OK;
 }
 
-uint8_t mrqp_fw_sync_counter_next(uint8_t counter, uint8_t overflow)
-{
+uint8_t mrqp_fw_sync_counter_next(uint8_t counter, uint8_t overflow) {
   if (overflow < 2u || overflow > MRQP_FW_SYNC_COUNTER_MAX) {
     return 0u;
   }

@@ -129,8 +129,10 @@ class ColladaReader {
 
   std::string describe(std::size_t e) const {
     std::string d = "<" + doc_[e].name;
-    if (const std::string* id = doc_[e].attr("id")) d += " id='" + *id + "'";
-    else if (const std::string* nm = doc_[e].attr("name")) d += " name='" + *nm + "'";
+    if (const std::string* id = doc_[e].attr("id"))
+      d += " id='" + *id + "'";
+    else if (const std::string* nm = doc_[e].attr("name"))
+      d += " name='" + *nm + "'";
     return d + ">";
   }
 
@@ -144,8 +146,8 @@ class ColladaReader {
     const auto it = ids_.find(ref->substr(1));
     if (it == ids_.end()) fail("malformed COLLADA: " + describe(from) + " refers to missing '" + *ref + "'");
     if (doc_[it->second].name != expected) {
-      fail("malformed COLLADA: '" + *ref + "' in " + describe(from) + " is a <" +
-           doc_[it->second].name + ">, not a <" + std::string(expected) + ">");
+      fail("malformed COLLADA: '" + *ref + "' in " + describe(from) + " is a <" + doc_[it->second].name +
+           ">, not a <" + std::string(expected) + ">");
     }
     return it->second;
   }
@@ -242,7 +244,8 @@ class ColladaReader {
         if (!skin) continue;  // morph controllers are not read
         const std::size_t geometry = resolve(*skin, "source", "geometry");
         Mat4 bind;
-        if (const auto bsm = child(*skin, "bind_shape_matrix")) bind = Mat4::rowMajor(numbers(*bsm, 16, *skin));
+        if (const auto bsm = child(*skin, "bind_shape_matrix"))
+          bind = Mat4::rowMajor(numbers(*bsm, 16, *skin));
         if (const auto mesh = child(geometry, "mesh")) addMesh(*mesh, t * bind, out);
       }
     }
@@ -275,7 +278,8 @@ class ColladaReader {
     if (const auto tc = child(source, "technique_common")) accessor = child(*tc, "accessor");
     if (accessor) {
       std::size_t params = 0;
-      for (const std::size_t c : doc_[*accessor].children) if (doc_[c].name == "param") ++params;
+      for (const std::size_t c : doc_[*accessor].children)
+        if (doc_[c].name == "param") ++params;
       stride = sizeAttr(*accessor, "stride", std::max<std::size_t>(params, 3));
       offset = sizeAttr(*accessor, "offset", 0);
     }

@@ -205,10 +205,8 @@ class Quickhull {
   // drops that point and goes on.
   bool build(const std::array<int, 4>& s, bool skipFailures) {
     faces_.clear();
-    const std::array<std::array<int, 3>, 4> tris{{{s[0], s[1], s[2]},
-                                                  {s[0], s[1], s[3]},
-                                                  {s[0], s[2], s[3]},
-                                                  {s[1], s[2], s[3]}}};
+    const std::array<std::array<int, 3>, 4> tris{
+        {{s[0], s[1], s[2]}, {s[0], s[1], s[3]}, {s[0], s[2], s[3]}, {s[1], s[2], s[3]}}};
     const std::array<int, 4> opposite{s[3], s[2], s[1], s[0]};
     for (std::size_t k = 0; k < 4; ++k) {
       std::array<int, 3> t = tris[k];
@@ -243,9 +241,8 @@ class Quickhull {
         continue;
       }
       std::vector<int>& out = face(f).outside;
-      const auto far = std::max_element(out.begin(), out.end(), [&](int a, int b) {
-        return distance(f, a) < distance(f, b);
-      });
+      const auto far = std::max_element(out.begin(), out.end(),
+                                        [&](int a, int b) { return distance(f, a) < distance(f, b); });
       const int eye = *far;
       if (orientation(pt(vtx(f, 0)), pt(vtx(f, 1)), pt(vtx(f, 2)), pt(eye)) <= 0) {
         out.erase(far);  // rounding beyond any sane bound; never seen, dropped to be safe
@@ -281,8 +278,7 @@ class Quickhull {
     }
     for (const Face& f : faces_) {
       if (!f.alive) continue;
-      hull.faces.push_back({remap[static_cast<std::size_t>(f.v[0])],
-                            remap[static_cast<std::size_t>(f.v[1])],
+      hull.faces.push_back({remap[static_cast<std::size_t>(f.v[0])], remap[static_cast<std::size_t>(f.v[1])],
                             remap[static_cast<std::size_t>(f.v[2])]});
     }
     return hull;
@@ -458,8 +454,8 @@ double lineDistance(const Vec3& p, const Vec3& a, const Vec3& dir) {
 
 // Extreme points of points lying (within tol) in the plane through `origin` with unit
 // normal `n`, in counter-clockwise order around n (Andrew's monotone chain).
-std::vector<int> planarHull(const std::vector<Vec3>& p, const Vec3& origin, const Vec3& axisU,
-                            const Vec3& n, double tol) {
+std::vector<int> planarHull(const std::vector<Vec3>& p, const Vec3& origin, const Vec3& axisU, const Vec3& n,
+                            double tol) {
   const Vec3 axisV = cross3(n, axisU);
   struct P2 {
     double x;

@@ -19,8 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using mesh::MeshError;
-using mesh::VertexSet;
 using mesh::startsWith;
+using mesh::VertexSet;
 
 // ---- URI helpers ----------------------------------------------------------------------
 
@@ -96,9 +96,12 @@ MeshReadResult readMeshVertices(const std::string& path) {
     if (size > 0 && !in.read(data.data(), size)) return failed("cannot read file");
 
     VertexSet vertices;
-    if (ext == ".stl") mesh::readStl(data, vertices);
-    else if (ext == ".obj") mesh::readObj(data, vertices);
-    else mesh::readDae(data, vertices);
+    if (ext == ".stl")
+      mesh::readStl(data, vertices);
+    else if (ext == ".obj")
+      mesh::readObj(data, vertices);
+    else
+      mesh::readDae(data, vertices);
     if (vertices.empty()) return failed("no vertices");
     result.ok = true;
     result.vertices = vertices.take();

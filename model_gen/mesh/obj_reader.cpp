@@ -32,8 +32,7 @@ void readObj(const std::string& data, VertexSet& out) {
     for (int k = 0; k < 3; ++k) {
       const std::string_view num = toks[static_cast<std::size_t>(k) + 1];
       if (!parseDouble(num, x[k]) || !std::isfinite(x[k])) {
-        fail("malformed OBJ: bad vertex coordinate " + quoteToken(num) + " at line " +
-             std::to_string(line));
+        fail("malformed OBJ: bad vertex coordinate " + quoteToken(num) + " at line " + std::to_string(line));
       }
     }
     out.add(x);

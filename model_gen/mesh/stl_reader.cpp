@@ -34,8 +34,7 @@ void readBinaryStl(const std::string& data, std::uint32_t count, VertexSet& out)
       const char* p = tri + 12 + 12 * v;
       const Eigen::Vector3d x(readF32LE(p), readF32LE(p + 4), readF32LE(p + 8));
       if (!x.allFinite()) {
-        fail("malformed binary STL: non-finite vertex coordinate in triangle " +
-             std::to_string(t));
+        fail("malformed binary STL: non-finite vertex coordinate in triangle " + std::to_string(t));
       }
       out.add(x);
     }
@@ -141,13 +140,11 @@ void readStl(const std::string& data, VertexSet& out) {
   const std::string note =
       startsWithSolidKeyword(data) ? " (the header starts with \"solid\" but the file is not text)" : "";
   if (size < kStlHeaderBytes) {
-    fail("truncated binary STL: " + std::to_string(size) +
-         " bytes, shorter than the 84-byte header" + note);
+    fail("truncated binary STL: " + std::to_string(size) + " bytes, shorter than the 84-byte header" + note);
   }
-  const std::string sizes = "the header declares " + std::to_string(count) +
-                            " triangles, i.e. 84 + 50*" + std::to_string(count) + " = " +
-                            std::to_string(expected) + " bytes, but the file has " +
-                            std::to_string(size) + " bytes" + note;
+  const std::string sizes = "the header declares " + std::to_string(count) + " triangles, i.e. 84 + 50*" +
+                            std::to_string(count) + " = " + std::to_string(expected) +
+                            " bytes, but the file has " + std::to_string(size) + " bytes" + note;
   if (size < expected) fail("truncated binary STL: " + sizes);
   fail("binary STL size mismatch: " + sizes);
 }

@@ -96,11 +96,16 @@ class XmlDocument {
         continue;
       }
       const std::string_view ent = in.substr(amp + 1, semi - amp - 1);
-      if (ent == "lt") out += '<';
-      else if (ent == "gt") out += '>';
-      else if (ent == "amp") out += '&';
-      else if (ent == "quot") out += '"';
-      else if (ent == "apos") out += '\'';
+      if (ent == "lt")
+        out += '<';
+      else if (ent == "gt")
+        out += '>';
+      else if (ent == "amp")
+        out += '&';
+      else if (ent == "quot")
+        out += '"';
+      else if (ent == "apos")
+        out += '\'';
       else if (ent.size() > 1 && ent[0] == '#') {
         unsigned long cp = 0;
         const bool hex = ent[1] == 'x' || ent[1] == 'X';
@@ -158,9 +163,12 @@ class XmlDocument {
         int depth = 0;
         std::size_t k = i + 2;
         for (; k < n; ++k) {
-          if (s_[k] == '[') ++depth;
-          else if (s_[k] == ']') --depth;
-          else if (s_[k] == '>' && depth <= 0) break;
+          if (s_[k] == '[')
+            ++depth;
+          else if (s_[k] == ']')
+            --depth;
+          else if (s_[k] == '>' && depth <= 0)
+            break;
         }
         if (k >= n) error(i, "unterminated <!...> declaration");
         i = k + 1;
@@ -219,8 +227,10 @@ class XmlDocument {
           elems_[open.back()].children.push_back(index);
         }
         elems_.push_back(std::move(el));
-        if (!selfClosing) open.push_back(index);
-        else if (open.empty()) rootClosed = true;
+        if (!selfClosing)
+          open.push_back(index);
+        else if (open.empty())
+          rootClosed = true;
         i = k;
       }
     }

@@ -105,4 +105,3 @@ inline void bodyToFrame(int frame, const double* x, double* out) noexcept {
   const double* Rf = frame_R[frame];
   for (int i = 0; i < 3; ++i) out[i] = Rf[i] * x[0] + Rf[3 + i] * x[1] + Rf[6 + i] * x[2];
 }
-

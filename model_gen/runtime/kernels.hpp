@@ -95,4 +95,3 @@ inline void bodyRegressor(const double* v, const double* a, double A[6][10]) noe
     for (int i = 0; i < 3; ++i) A[i][4 + k] = La[i][k] + wc[i];
   }
 }
-

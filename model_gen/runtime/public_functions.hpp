@@ -55,7 +55,7 @@ void frameJacobian(const Data& d, int frame, const Eigen::Vector3d& point, Refer
       for (int h = 0; h < 2; ++h) {
         double* seg = Jp + 6 * c + 3 * h;
         rotateT(d.R[ix(b)].data(), seg, x);  // world -> body
-        bodyToFrame(frame, x, seg);      // body -> frame
+        bodyToFrame(frame, x, seg);          // body -> frame
       }
     }
   }
@@ -186,8 +186,16 @@ void inertialParameters(ParamVector& phi) noexcept {
   double* x = phi.data();
   for (int b = 0; b < nbodies; ++b) {
     const double* I = bodyRotationalInertia[b];  // column-major, symmetric
-    const double vals[10] = {bodyMass[b], bodyFirstMoment[b][0], bodyFirstMoment[b][1], bodyFirstMoment[b][2],
-                             I[0], I[3], I[4], I[6], I[7], I[8]};
+    const double vals[10] = {bodyMass[b],
+                             bodyFirstMoment[b][0],
+                             bodyFirstMoment[b][1],
+                             bodyFirstMoment[b][2],
+                             I[0],
+                             I[3],
+                             I[4],
+                             I[6],
+                             I[7],
+                             I[8]};
     for (int k = 0; k < 10; ++k) x[10 * b + k] = vals[k];
   }
 }
@@ -196,4 +204,3 @@ void neutral(ConfigVector& q) noexcept {
   q.setZero();
   if (floating_base) q(3) = 1.0;
 }
-

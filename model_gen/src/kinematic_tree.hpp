@@ -29,19 +29,19 @@ struct TreeJoint {
   JointKind kind = JointKind::Fixed;
   bool continuous = false;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();  ///< unit axis in the body frame
-  int q_index = -1;        ///< first position coordinate driving this joint
-  int v_index = -1;        ///< first velocity coordinate driving this joint
+  int q_index = -1;                                 ///< first position coordinate driving this joint
+  int v_index = -1;                                 ///< first velocity coordinate driving this joint
   bool mimic = false;
-  std::string mimicked;    ///< the independent joint a mimic joint follows
-  double multiplier = 1.0; ///< q_joint = multiplier · q[q_index] + offset
+  std::string mimicked;     ///< the independent joint a mimic joint follows
+  double multiplier = 1.0;  ///< q_joint = multiplier · q[q_index] + offset
   double offset = 0.0;
   double lower = 0.0, upper = 0.0, velocity = 0.0, effort = 0.0;
   bool has_limits = false;
 };
 
 struct TreeBody {
-  std::string name;  ///< name of the URDF link at the body's origin
-  int parent = -1;   ///< parent body, -1 for the root
+  std::string name;                                  ///< name of the URDF link at the body's origin
+  int parent = -1;                                   ///< parent body, -1 for the root
   Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  ///< joint frame in the parent body frame
   Eigen::Vector3d p0 = Eigen::Vector3d::Zero();
   TreeJoint joint;
@@ -62,10 +62,11 @@ struct CollisionShape {
   std::string link;
   int body = 0;
   ShapeKind kind = ShapeKind::Box;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box: full extents; cylinder: radius, length; sphere: radius
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();   ///< shape pose in the body frame
+  Eigen::Vector3d size =
+      Eigen::Vector3d::Zero();  ///< box: full extents; cylinder: radius, length; sphere: radius
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< shape pose in the body frame
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> vertices;             ///< convex hull vertices (ConvexMesh), shape frame
+  std::vector<Eigen::Vector3d> vertices;  ///< convex hull vertices (ConvexMesh), shape frame
 };
 
 struct KinematicTree {

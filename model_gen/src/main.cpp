@@ -87,7 +87,11 @@ int main(int argc, char** argv) {
     }
   }
   if (urdf.empty() || name.empty() || out.empty()) {
-    std::cerr << "mrqp-gen: missing " << (urdf.empty() ? "URDF file" : name.empty() ? "--name" : "--out") << "\n"
+    std::cerr << "mrqp-gen: missing "
+              << (urdf.empty()   ? "URDF file"
+                  : name.empty() ? "--name"
+                                 : "--out")
+              << "\n"
               << kUsage;
     return 2;
   }
@@ -123,7 +127,7 @@ int main(int argc, char** argv) {
   }
   if (!quiet)
     std::printf("mrqp-gen: %s -> %s/%s.{hpp,cpp}: %zu bodies, %zu frames, nq %d, nv %d, mass %.6g kg%s\n",
-                urdf.c_str(), out.c_str(), name.c_str(), tree.bodies.size(), tree.frames.size(), tree.nq, tree.nv,
-                tree.totalMass(), tree.floating_base ? ", floating base" : "");
+                urdf.c_str(), out.c_str(), name.c_str(), tree.bodies.size(), tree.frames.size(), tree.nq,
+                tree.nv, tree.totalMass(), tree.floating_base ? ", floating base" : "");
   return 0;
 }

@@ -15,7 +15,8 @@ std::string emitProbe(const std::string& name, const std::string& origin) {
 #include <string>
 #include <vector>
 
-namespace m = )" + name + R"(;
+namespace m = )" +
+       name + R"(;
 
 namespace {
 
@@ -52,7 +53,8 @@ m::MassMatrix M;
 
 int main() {
   std::printf("{\"model\":");
-  string(")" + name + R"(");
+  string(")" +
+       name + R"(");
   std::printf(",\"nq\":%d,\"nv\":%d,\"floating_base\":%s,\"joints\":[", m::nq, m::nv,
               m::floating_base ? "true" : "false");
   for (int i = 0; i < m::njoints; ++i) {

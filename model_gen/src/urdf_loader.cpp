@@ -55,7 +55,8 @@ std::string describeParseFailure(const std::string& xml) {
     const TiXmlElement* child = j->FirstChildElement("child");
     const char* name = j->Attribute("name");
     if (!name || !parent || !child || !parent->Attribute("link") || !child->Attribute("link")) continue;
-    parentOf.emplace(child->Attribute("link"), std::make_pair(std::string(name), std::string(parent->Attribute("link"))));
+    parentOf.emplace(child->Attribute("link"),
+                     std::make_pair(std::string(name), std::string(parent->Attribute("link"))));
   }
   if (links.empty()) return {};
   for (const auto& l : links)
@@ -75,9 +76,7 @@ std::string describeParseFailure(const std::string& xml) {
   throw ModelError(source + ": " + what);
 }
 
-bool finite(const urdf::Vector3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+bool finite(const urdf::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 Eigen::Vector3d toEigen(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
 
@@ -137,7 +136,8 @@ BodyInertia linkInertia(const std::string& source, const urdf::Link& link, bool 
     std::ostringstream os;
     os << el << ": inertia violates the triangle inequality (principal moments " << ev(0) << " + " << ev(1)
        << " < " << ev(2) << ")";
-    if (!allow_nonphysical) fail(source, os.str() + "; --allow-nonphysical-inertia accepts it with a warning");
+    if (!allow_nonphysical)
+      fail(source, os.str() + "; --allow-nonphysical-inertia accepts it with a warning");
     warnings.push_back(os.str() + "; kept as given (--allow-nonphysical-inertia)");
   }
   if (in.mass == 0.0 && ev(2) > tol) {
@@ -168,7 +168,8 @@ void addInertia(BodyInertia& a, const BodyInertia& b, const Placement& X) {
 
 class TreeBuilder {
  public:
-  TreeBuilder(const urdf::ModelInterface& model, std::string source, std::string base_dir, const LoadOptions& opt)
+  TreeBuilder(const urdf::ModelInterface& model, std::string source, std::string base_dir,
+              const LoadOptions& opt)
       : model_(model), source_(std::move(source)), base_dir_(std::move(base_dir)), opt_(opt) {}
 
   KinematicTree build() {
@@ -216,9 +217,11 @@ class TreeBuilder {
         case urdf::Joint::FIXED:
           break;
         case urdf::Joint::PLANAR:
-          fail(source_, el + ": type planar is not supported (model it as two prismatic and one revolute joint)");
+          fail(source_,
+               el + ": type planar is not supported (model it as two prismatic and one revolute joint)");
         case urdf::Joint::FLOATING:
-          fail(source_, el + ": type floating is not supported inside the tree (use --floating-base for the root)");
+          fail(source_,
+               el + ": type floating is not supported inside the tree (use --floating-base for the root)");
         default:
           fail(source_, el + ": unknown joint type");
       }
@@ -279,7 +282,8 @@ class TreeBuilder {
       std::string cur = name;
       while (parentJoint.count(cur)) {
         if (!seen.insert(cur).second)
-          fail(source_, quoted("joint", parentJoint[cur]) + ": closes a kinematic cycle through link '" + cur + "'");
+          fail(source_,
+               quoted("joint", parentJoint[cur]) + ": closes a kinematic cycle through link '" + cur + "'");
         cur = model_.joints_.at(parentJoint[cur])->parent_link_name;
       }
     }
@@ -293,11 +297,13 @@ class TreeBuilder {
     frame.R = X_body_link.R;
     frame.p = X_body_link.p;
     tree_.frames.push_back(frame);
-    addInertia(tree_.bodies[idx(body)].inertia, linkInertia(source_, link, opt_.allow_nonphysical_inertia, tree_.warnings), X_body_link);
+    addInertia(tree_.bodies[idx(body)].inertia,
+               linkInertia(source_, link, opt_.allow_nonphysical_inertia, tree_.warnings), X_body_link);
     addCollisions(link, body, X_body_link);
 
     std::vector<urdf::JointSharedPtr> children(link.child_joints.begin(), link.child_joints.end());
-    std::sort(children.begin(), children.end(), [](const auto& a, const auto& b) { return a->name < b->name; });
+    std::sort(children.begin(), children.end(),
+              [](const auto& a, const auto& b) { return a->name < b->name; });
     for (const auto& j : children) {
       const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
       const Placement X = X_body_link * toPlacement(j->parent_to_joint_origin_transform);
@@ -330,7 +336,8 @@ class TreeBuilder {
       out.velocity = j.limits->velocity;
       out.effort = j.limits->effort;
       if (out.velocity == 0.0 && !j.mimic)
-        tree_.warnings.push_back(quoted("joint", j.name) + ": velocity limit 0; velocity limits will hold it still");
+        tree_.warnings.push_back(quoted("joint", j.name) +
+                                 ": velocity limit 0; velocity limits will hold it still");
     } else {
       out.lower = -kInf;
       out.upper = kInf;
@@ -368,10 +375,12 @@ class TreeBuilder {
       std::set<std::string> seen{j.name};
       for (;;) {
         if (!seen.insert(target).second)
-          fail(source_, quoted("joint", j.name) + ": mimic chain forms a cycle through joint '" + target + "'");
+          fail(source_,
+               quoted("joint", j.name) + ": mimic chain forms a cycle through joint '" + target + "'");
         auto it = byName.find(target);
         if (it == byName.end())
-          fail(source_, quoted("joint", j.name) + ": mimic refers to joint '" + target + "' which is not in the tree");
+          fail(source_,
+               quoted("joint", j.name) + ": mimic refers to joint '" + target + "' which is not in the tree");
         const TreeJoint& t = tree_.bodies[idx(it->second)].joint;
         if (!t.mimic) {
           j.q_index = t.q_index;
@@ -418,7 +427,8 @@ class TreeBuilder {
       if (!info.first) continue;
       std::string what = quoted("joint", coordinateName[v]);
       if (info.second > 0) what += " (with the " + std::to_string(info.second) + " joints that mimic it)";
-      tree_.warnings.push_back(what + " moves no mass (massless subtree); the mass matrix is singular along its coordinate");
+      tree_.warnings.push_back(
+          what + " moves no mass (massless subtree); the mass matrix is singular along its coordinate");
     }
   }
 
@@ -438,7 +448,8 @@ class TreeBuilder {
       switch (c->geometry->type) {
         case urdf::Geometry::BOX: {
           const auto& g = static_cast<const urdf::Box&>(*c->geometry);
-          if (!finite(g.dim) || g.dim.x < 0 || g.dim.y < 0 || g.dim.z < 0) fail(source_, el + ": invalid box size");
+          if (!finite(g.dim) || g.dim.x < 0 || g.dim.y < 0 || g.dim.z < 0)
+            fail(source_, el + ": invalid box size");
           s.kind = ShapeKind::Box;
           s.size = toEigen(g.dim);
           break;

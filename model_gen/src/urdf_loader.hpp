@@ -28,7 +28,7 @@ struct LoadOptions {
 KinematicTree loadUrdfFile(const std::string& path, const LoadOptions& options);
 
 /// Same from a URDF text; `source` names it in messages, `base_dir` resolves relative meshes.
-KinematicTree loadUrdfString(const std::string& xml, const std::string& source,
-                             const std::string& base_dir, const LoadOptions& options);
+KinematicTree loadUrdfString(const std::string& xml, const std::string& source, const std::string& base_dir,
+                             const LoadOptions& options);
 
 }  // namespace mrqp::gen

@@ -92,7 +92,8 @@ TEST_CASE("an arm RPDO packed by firmware_if decodes back from its log line", "[
   CHECK(field(rows, "target_torque_nm") == Approx(-0.25));
 }
 
-TEST_CASE("SYNC, heartbeat and a foreign EMCY decode; malformed and unknown frames are counted", "[candecode]") {
+TEST_CASE("SYNC, heartbeat and a foreign EMCY decode; malformed and unknown frames are counted",
+          "[candecode]") {
   DeviceMap map;
   map.arm_nodes = {1, 2};
   DecodeCounters c;

@@ -13,7 +13,7 @@ TEST_CASE("at t = 0 each scheme decides what the paper says", "[case_study]") {
   const BoxState s0;  // (0, 0): g̈d = 1
   const Decision all = study.multiRobot(s0);
   REQUIRE(all.ok);
-  CHECK(all.qdd31 == Approx(1.0).epsilon(1e-6));      // eq. 43 at t = 0
+  CHECK(all.qdd31 == Approx(1.0).epsilon(1e-6));  // eq. 43 at t = 0
   CHECK(all.tau11 + all.tau21 == Approx(1.0).epsilon(1e-6));
   CHECK(std::abs(all.tau11) <= 0.5 + 1e-9);
   CHECK(std::abs(all.tau21) <= 0.5 + 1e-9);
@@ -21,12 +21,12 @@ TEST_CASE("at t = 0 each scheme decides what the paper says", "[case_study]") {
   const Decision seq = study.sequential(s0);
   REQUIRE(seq.ok);
   CHECK(seq.qdd31 == Approx(0.5).epsilon(1e-9));  // saturated, eq. 40
-  CHECK(seq.f23 == Approx(0.0).margin(1e-9));      // robot 2 only follows
+  CHECK(seq.f23 == Approx(0.0).margin(1e-9));     // robot 2 only follows
   const Decision par = study.parallel(s0);
   REQUIRE(par.ok);
   CHECK(par.qdd31 == Approx(1.0).epsilon(1e-6));
-  CHECK(par.f13 == Approx(0.5).epsilon(1e-6));     // the box's QP splits the force (eq. 33)...
-  CHECK(par.f31 == Approx(0.0).margin(1e-6));      // ...the robots' QPs apply none (eq. 31)
+  CHECK(par.f13 == Approx(0.5).epsilon(1e-6));  // the box's QP splits the force (eq. 33)...
+  CHECK(par.f31 == Approx(0.0).margin(1e-6));   // ...the robots' QPs apply none (eq. 31)
   CHECK(par.newtonViolation() > 0.49);
 }
 

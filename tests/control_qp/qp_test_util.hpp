@@ -41,12 +41,18 @@ inline Kkt kktErrors(const QpProblem& p, const Eigen::VectorXd& x, const Eigen::
     k.primal = std::max(k.primal, viol / std::max({1.0, std::isfinite(lo) ? std::abs(lo) : 0.0,
                                                    std::isfinite(up) ? std::abs(up) : 0.0}));
     if (m < 0) {  // lower side
-      if (!std::isfinite(lo)) k.dual = std::max(k.dual, -m / mscale);
-      else k.complementarity = std::max(k.complementarity, -m * std::abs(value - lo) / mscale / std::max(1.0, std::abs(lo)));
+      if (!std::isfinite(lo))
+        k.dual = std::max(k.dual, -m / mscale);
+      else
+        k.complementarity =
+            std::max(k.complementarity, -m * std::abs(value - lo) / mscale / std::max(1.0, std::abs(lo)));
     }
     if (m > 0) {
-      if (!std::isfinite(up)) k.dual = std::max(k.dual, m / mscale);
-      else k.complementarity = std::max(k.complementarity, m * std::abs(up - value) / mscale / std::max(1.0, std::abs(up)));
+      if (!std::isfinite(up))
+        k.dual = std::max(k.dual, m / mscale);
+      else
+        k.complementarity =
+            std::max(k.complementarity, m * std::abs(up - value) / mscale / std::max(1.0, std::abs(up)));
     }
   };
   const Eigen::VectorXd ax = p.A() * x, cx = p.C() * x;
@@ -117,7 +123,8 @@ inline bool bruteForce(const QpProblem& p, Eigen::VectorXd& best_x, double& best
     const Eigen::VectorXd x = sol.head(n);
     bool feasible = true;
     const Eigen::VectorXd ax = p.A() * x, cx = p.C() * x;
-    for (int i = 0; i < me; ++i) feasible &= std::abs(ax(i) - p.b()(i)) <= tol * std::max(1.0, std::abs(p.b()(i)));
+    for (int i = 0; i < me; ++i)
+      feasible &= std::abs(ax(i) - p.b()(i)) <= tol * std::max(1.0, std::abs(p.b()(i)));
     for (int i = 0; i < mi; ++i)
       feasible &= cx(i) >= p.l()(i) - tol * std::max(1.0, std::abs(p.l()(i))) &&
                   cx(i) <= p.u()(i) + tol * std::max(1.0, std::abs(p.u()(i)));

@@ -29,8 +29,14 @@ using mrqp::testing::allocationsIn;
 
 TEST_CASE("qp: the counting allocator is in effect", "[qp][realtime]") {
   static void* volatile sink;  // keeps the compiler from eliding the pairs below
-  CHECK(allocationsIn([] { sink = ::operator new(8); ::operator delete(sink); }) == 1);
-  CHECK(allocationsIn([] { sink = std::malloc(64); std::free(sink); }) == 1);
+  CHECK(allocationsIn([] {
+          sink = ::operator new(8);
+          ::operator delete(sink);
+        }) == 1);
+  CHECK(allocationsIn([] {
+          sink = std::malloc(64);
+          std::free(sink);
+        }) == 1);
   CHECK(allocationsIn([] { std::vector<int> v(10); }) == 1);
 }
 

@@ -35,23 +35,28 @@ std::vector<std::string> dumpFiles() {
 double infNorm(const Eigen::VectorXd& v) { return v.size() ? v.lpNorm<Eigen::Infinity>() : 0.0; }
 
 struct Residuals {
-  double primal = 0.0;           // largest violation, relative to max(1, |bound|)
-  double dual = 0.0;             // ‖Hx + g + Aᵀy + Cᵀλ + μ‖∞, relative to the largest of its terms
-  double sign = 0.0;             // wrong-sign multiplier, or one on an infinite side, relative
+  double primal = 0.0;  // largest violation, relative to max(1, |bound|)
+  double dual = 0.0;    // ‖Hx + g + Aᵀy + Cᵀλ + μ‖∞, relative to the largest of its terms
+  double sign = 0.0;    // wrong-sign multiplier, or one on an infinite side, relative
   double complementarity = 0.0;  // |multiplier| · distance to its side, relative
 };
 
 /// One side of a two-sided constraint lo ≤ value ≤ up with multiplier m (≤ 0 at lo, ≥ 0 at up).
 void side(double value, double lo, double up, double m, double mscale, Residuals& r) {
-  const double scale = std::max({1.0, std::isfinite(lo) ? std::abs(lo) : 0.0, std::isfinite(up) ? std::abs(up) : 0.0});
+  const double scale =
+      std::max({1.0, std::isfinite(lo) ? std::abs(lo) : 0.0, std::isfinite(up) ? std::abs(up) : 0.0});
   r.primal = std::max(r.primal, std::max({0.0, lo - value, value - up}) / scale);
   if (lo == up) return;  // an equality: its multiplier has no sign
   if (m < 0.0) {
-    if (!std::isfinite(lo)) r.sign = std::max(r.sign, -m / mscale);
-    else r.complementarity = std::max(r.complementarity, -m * std::abs(value - lo) / mscale / scale);
+    if (!std::isfinite(lo))
+      r.sign = std::max(r.sign, -m / mscale);
+    else
+      r.complementarity = std::max(r.complementarity, -m * std::abs(value - lo) / mscale / scale);
   } else if (m > 0.0) {
-    if (!std::isfinite(up)) r.sign = std::max(r.sign, m / mscale);
-    else r.complementarity = std::max(r.complementarity, m * std::abs(up - value) / mscale / scale);
+    if (!std::isfinite(up))
+      r.sign = std::max(r.sign, m / mscale);
+    else
+      r.complementarity = std::max(r.complementarity, m * std::abs(up - value) / mscale / scale);
   }
 }
 
@@ -116,7 +121,9 @@ TEST_CASE("qp: controller scene dumps are solved, KKT checked from the data", "[
     CHECK_FALSE(solver.info().cold_restarted);
     CHECK(solver.info().iterations == 0);
     checkKkt(qp, solver);
-    CHECK((solver.x() - x_cold).lpNorm<Eigen::Infinity>() <= 1e-8 * std::max(1.0, x_cold.lpNorm<Eigen::Infinity>()));
-    CHECK(std::abs(mrqp::qp::evaluateObjective(qp, solver.x()) - f_cold) <= 1e-9 * std::max(1.0, std::abs(f_cold)));
+    CHECK((solver.x() - x_cold).lpNorm<Eigen::Infinity>() <=
+          1e-8 * std::max(1.0, x_cold.lpNorm<Eigen::Infinity>()));
+    CHECK(std::abs(mrqp::qp::evaluateObjective(qp, solver.x()) - f_cold) <=
+          1e-9 * std::max(1.0, std::abs(f_cold)));
   }
 }

@@ -43,8 +43,8 @@ TEST_CASE("qp: random strictly convex QPs satisfy the KKT conditions to 1e-8", "
     int n, me, mi;
     bool bounds;
   };
-  const Size sizes[] = {{1, 0, 0, true},    {2, 1, 1, true},    {5, 0, 5, false},  {5, 2, 3, true},
-                        {10, 3, 8, true},   {20, 0, 30, false}, {30, 10, 20, true}, {40, 0, 0, true},
+  const Size sizes[] = {{1, 0, 0, true},    {2, 1, 1, true},     {5, 0, 5, false},     {5, 2, 3, true},
+                        {10, 3, 8, true},   {20, 0, 30, false},  {30, 10, 20, true},   {40, 0, 0, true},
                         {60, 36, 40, true}, {100, 20, 80, true}, {150, 100, 150, true}};
   std::mt19937_64 rng(42);
   int solved = 0;
@@ -84,7 +84,7 @@ TEST_CASE("qp: tiny QPs match brute-force enumeration of all active sets", "[qp]
   for (int trial = 0; trial < 400; ++trial) {
     const int n = 1 + trial % 4;
     const int me = static_cast<int>(U(rng) * std::min(2, n));  // 0 .. min(2, n) - 1
-    const int mi = static_cast<int>(U(rng) * 4.0);               // 0 .. 3
+    const int mi = static_cast<int>(U(rng) * 4.0);             // 0 .. 3
     QpProblem p = makeProblem(n, me, mi);
     Eigen::MatrixXd M(n, n);
     for (int i = 0; i < n; ++i)
@@ -115,7 +115,8 @@ TEST_CASE("qp: tiny QPs match brute-force enumeration of all active sets", "[qp]
     if (feasible) {
       REQUIRE(st == QpStatus::Optimal);
       CHECK(solver.objective() == Approx(fb).epsilon(1e-9).margin(1e-9));
-      CHECK((solver.x() - xb).lpNorm<Eigen::Infinity>() <= 1e-7 * std::max(1.0, xb.lpNorm<Eigen::Infinity>()));
+      CHECK((solver.x() - xb).lpNorm<Eigen::Infinity>() <=
+            1e-7 * std::max(1.0, xb.lpNorm<Eigen::Infinity>()));
       CHECK(qptest::kktErrors(p, solver).worst() <= 1e-8);
       ++optimal;
     } else {
@@ -428,7 +429,8 @@ TEST_CASE("qp: warm start reproduces the cold solution with fewer iterations", "
       CHECK(warm.info().warm_started);
       CHECK_FALSE(warm.info().cold_restarted);
       CHECK_FALSE(cold.info().warm_started);
-      CHECK((warm.x() - cold.x()).lpNorm<Eigen::Infinity>() <= 1e-8 * std::max(1.0, cold.x().lpNorm<Eigen::Infinity>()));
+      CHECK((warm.x() - cold.x()).lpNorm<Eigen::Infinity>() <=
+            1e-8 * std::max(1.0, cold.x().lpNorm<Eigen::Infinity>()));
       CHECK(warm.objective() == Approx(cold.objective()).epsilon(1e-10));
       CHECK(warm.iterations() <= cold.iterations());
       CHECK(qptest::kktErrors(p, warm).worst() <= 1e-8);
@@ -483,8 +485,8 @@ TEST_CASE("qp: the active size may be below capacity and change between solves",
   struct Size {
     int n, me, mi;
   };
-  for (const Size& sz : {Size{10, 3, 5}, Size{50, 20, 30}, Size{1, 0, 0}, Size{25, 20, 0},
-                         Size{10, 3, 5}, Size{0, 0, 0}, Size{40, 0, 30}}) {
+  for (const Size& sz : {Size{10, 3, 5}, Size{50, 20, 30}, Size{1, 0, 0}, Size{25, 20, 0}, Size{10, 3, 5},
+                         Size{0, 0, 0}, Size{40, 0, 30}}) {
     RandomQpSpec spec;
     spec.n = sz.n;
     spec.me = sz.me;

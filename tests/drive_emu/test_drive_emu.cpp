@@ -18,8 +18,7 @@ using namespace mrqp::drive_emu;
 namespace {
 
 struct Bench {
-  explicit Bench(const EmuConfig& emu_cfg)
-  {
+  explicit Bench(const EmuConfig& emu_cfg) {
     SimNodeConfig mc;
     mc.name = "master";
     mc.rx_queue = 2048;
@@ -40,8 +39,7 @@ struct Bench {
     config = cfg;
     arm = ArmDriver::create({router.get()}, cfg, &error);
   }
-  const FaultReport& cycle()
-  {
+  const FaultReport& cycle() {
     bus.advance_to(t);
     router->poll(t);
     const FaultReport& r = arm->update(t);
@@ -50,8 +48,7 @@ struct Bench {
     t += config.cycle_period;
     return r;
   }
-  bool boot_and_enable()
-  {
+  bool boot_and_enable() {
     arm->start(t);
     for (int k = 0; k < 2000 && arm->phase() != ArmPhase::Running; ++k) {
       cycle();
@@ -77,8 +74,7 @@ struct Bench {
   TimeNs t = 0;
 };
 
-EmuConfig three_nodes()
-{
+EmuConfig three_nodes() {
   EmuConfig c;
   for (std::uint8_t n = 1; n <= 3; ++n) {
     EmuNode e;
@@ -91,8 +87,7 @@ EmuConfig three_nodes()
 
 }  // namespace
 
-TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_emu]")
-{
+TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_emu]") {
   Bench b(three_nodes());
   REQUIRE(b.arm != nullptr);
   REQUIRE(b.boot_and_enable());
@@ -120,8 +115,7 @@ TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_e
   CHECK(b.emu->emulator().stats().syncs > 1500);
 }
 
-TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer timeout", "[drive_emu]")
-{
+TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer timeout", "[drive_emu]") {
   EmuConfig c = three_nodes();
   c.nodes[1].faults.heartbeat_stop_at = milliseconds(1500);
   Bench b(c);
@@ -141,8 +135,7 @@ TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer t
   CHECK(detected <= milliseconds(1500) + b.config.heartbeat_timeout + milliseconds(5));
 }
 
-TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees it", "[drive_emu]")
-{
+TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees it", "[drive_emu]") {
   EmuConfig c = three_nodes();
   c.nodes[2].faults.emcy_at = milliseconds(1200);
   Bench b(c);
@@ -158,14 +151,14 @@ TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees i
   CHECK(fault_state);
 }
 
-TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]")
-{
+TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   const std::string good = "drive_emu_good.yaml";
   {
     std::ofstream f(good);
     f << "interface: vcan0\nincrements_per_rev: 131072\nrated_torque: 5\n"
          "joint: {inertia: 0.1, damping: 0.2, torque_limit: 30}\n"
-         "nodes:\n  - 1\n  - {node: 2, inertia: 0.2, faults: {stop_heartbeat_at: 2.5, emcy_at: 1, emcy_code: 0x3210}}\n"
+         "nodes:\n  - 1\n  - {node: 2, inertia: 0.2, faults: {stop_heartbeat_at: 2.5, emcy_at: 1, emcy_code: "
+         "0x3210}}\n"
          "faults: {drop_fraction: 0.01, corrupt_fraction: 0.02}\n";
   }
   EmuConfig c;
@@ -232,8 +225,7 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]")
   std::remove(bad.c_str());
 }
 
-TEST_CASE("drive emulator: corrupted frames are counted by the driver", "[drive_emu]")
-{
+TEST_CASE("drive emulator: corrupted frames are counted by the driver", "[drive_emu]") {
   EmuConfig faulty = three_nodes();
   faulty.corrupt_fraction = 0.05;  // of every frame the emulator sends, boot included
   faulty.seed = 7;

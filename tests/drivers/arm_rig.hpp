@@ -20,9 +20,8 @@ struct ArmRig {
   /// drives[i] = {bus, node}. The master is node 0 of every bus; with `echo_own` it receives its
   /// own frames (TX echo). `boot_delay`: the fake drives' power-on / reset -> boot-up time.
   ArmRig(const std::vector<std::pair<std::size_t, std::uint8_t>>& drives, mrqp::drivers::ArmConfig cfg,
-         std::size_t master_tx_queue = 64, std::vector<std::int32_t> initial_positions = {}, bool echo_own = false,
-         mrqp::drivers::TimeNs boot_delay = 2000000)
-  {
+         std::size_t master_tx_queue = 64, std::vector<std::int32_t> initial_positions = {},
+         bool echo_own = false, mrqp::drivers::TimeNs boot_delay = 2000000) {
     using namespace mrqp::drivers;
     std::size_t nbus = 1;
     for (const auto& d : drives) {
@@ -72,8 +71,7 @@ struct ArmRig {
   }
 
   /// One control cycle at time t, then t += period.
-  const mrqp::drivers::FaultReport& cycle()
-  {
+  const mrqp::drivers::FaultReport& cycle() {
     for (auto& b : buses) {
       b->advance_to(t);
     }
@@ -91,12 +89,11 @@ struct ArmRig {
   }
 
   /// Boots: start() then cycles until Running (or `max` cycles). Returns the cycles used.
-  int boot(int max = 400)
-  {
+  int boot(int max = 400) {
     arm->start(t);
     int k = 0;
-    while (arm->phase() != mrqp::drivers::ArmPhase::Running && arm->phase() != mrqp::drivers::ArmPhase::Failed &&
-           k < max) {
+    while (arm->phase() != mrqp::drivers::ArmPhase::Running &&
+           arm->phase() != mrqp::drivers::ArmPhase::Failed && k < max) {
       cycle();
       ++k;
     }
@@ -105,23 +102,20 @@ struct ArmRig {
   }
 
   /// Runs the buses up to the next cycle time: the frames of the last transmit are on the wire.
-  void flush()
-  {
+  void flush() {
     for (auto& b : buses) {
       b->advance_to(t);
     }
   }
 
   /// Frames the master sent on `bus` since `from` (after flush()).
-  std::vector<std::string> master_frames(mrqp::drivers::TimeNs from = 0, std::size_t bus = 0)
-  {
+  std::vector<std::string> master_frames(mrqp::drivers::TimeNs from = 0, std::size_t bus = 0) {
     flush();
     return logs[bus]->frames(static_cast<long>(masters[bus]->index()), from);
   }
 
   /// Every frame on `bus` (after flush()).
-  std::vector<std::string> wire(std::size_t bus = 0)
-  {
+  std::vector<std::string> wire(std::size_t bus = 0) {
     flush();
     return logs[bus]->frames();
   }

@@ -22,13 +22,14 @@ using EmulatedNode = mrqp::emulation::SimDeviceNode<Device>;
 class IdealJointHost final : public mrqp::emulation::JointHost {
  public:
   IdealJointHost(mrqp::drivers::SimNode& node, bool hand) : node_(node), hand_(hand) {}
-  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override { (void)node_.send_at(frame, at); }
-  mrqp::emulation::JointMeasurement measure(std::size_t j, mrqp::drivers::TimeNs) noexcept override
-  {
+  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
+    (void)node_.send_at(frame, at);
+  }
+  mrqp::emulation::JointMeasurement measure(std::size_t j, mrqp::drivers::TimeNs) noexcept override {
     return {static_cast<double>(p[j]), static_cast<double>(v[j]), static_cast<double>(t[j])};
   }
-  void command(std::size_t j, const mrqp::emulation::ServoCommand& s, mrqp::drivers::TimeNs) noexcept override
-  {
+  void command(std::size_t j, const mrqp::emulation::ServoCommand& s,
+               mrqp::drivers::TimeNs) noexcept override {
     servo[j] = s;
     ++commands;
     if (!s.enabled) {
@@ -64,7 +65,9 @@ class IdealJointHost final : public mrqp::emulation::JointHost {
 class ConstantFtHost final : public mrqp::emulation::EmulatedFtSensor::Host {
  public:
   explicit ConstantFtHost(mrqp::drivers::SimNode& node) : node_(node) {}
-  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override { (void)node_.send_at(frame, at); }
+  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
+    (void)node_.send_at(frame, at);
+  }
   std::array<double, 6> wrench(mrqp::drivers::TimeNs) noexcept override { return value; }
   std::array<double, 6> value{};
 
@@ -75,7 +78,9 @@ class ConstantFtHost final : public mrqp::emulation::EmulatedFtSensor::Host {
 class ConstantImuHost final : public mrqp::emulation::EmulatedImu::Host {
  public:
   explicit ConstantImuHost(mrqp::drivers::SimNode& node) : node_(node) {}
-  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override { (void)node_.send_at(frame, at); }
+  void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
+    (void)node_.send_at(frame, at);
+  }
   mrqp::emulation::ImuValues imu(mrqp::drivers::TimeNs) noexcept override { return value; }
   mrqp::emulation::ImuValues value{};
 

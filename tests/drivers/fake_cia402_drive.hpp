@@ -6,9 +6,9 @@
 // SYNC. Allocation-free after construction.
 #pragma once
 
-#include <mrqp/emulation/emulated_cia402_drive.hpp>
-#include <mrqp/drivers/sim_bus.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
+#include <mrqp/drivers/sim_bus.hpp>
+#include <mrqp/emulation/emulated_cia402_drive.hpp>
 
 #include <cstdint>
 
@@ -20,13 +20,14 @@ using mrqp::drivers::TimeNs;
 
 struct FakeDriveOptions {
   std::uint8_t node = 1;
-  TimeNs boot_delay = 2000000;      ///< reset -> boot-up message (2 ms)
-  TimeNs response_delay = 20000;    ///< SDO answer / TPDO after SYNC (20 us)
+  TimeNs boot_delay = 2000000;    ///< reset -> boot-up message (2 ms)
+  TimeNs response_delay = 20000;  ///< SDO answer / TPDO after SYNC (20 us)
   std::int32_t initial_position = 0;
   mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
 };
 
-class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::emulation::EmulatedCia402Drive::Host {
+class FakeCia402Drive final : public mrqp::drivers::SimListener,
+                              private mrqp::emulation::EmulatedCia402Drive::Host {
  public:
   FakeCia402Drive(SimNode& node, const FakeDriveOptions& options);
 
@@ -45,8 +46,7 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::e
   void set_silent(bool silent) noexcept { drive_.set_silent(silent); }
   void corrupt_pdos(unsigned n) noexcept { drive_.corrupt_pdos(n); }
   /// Answer SDO writes to index:sub with an abort.
-  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept
-  {
+  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
     drive_.abort_on_write(index, sub, code);
   }
   /// Report this mode in the mode display instead of 0x6060.
@@ -55,8 +55,7 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener, private mrqp::e
   // ---- observation ----
   mrqp_fw_nmt_state nmt() const noexcept { return drive_.nmt(); }
   mrqp_fw_cia402_state state() const noexcept { return drive_.state(); }
-  bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept
-  {
+  bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept {
     return drive_.od(index, sub, value);
   }
   std::int32_t target_position() const noexcept { return drive_.target_position(); }

@@ -2,8 +2,8 @@
 // built from the firmware_if frames, attached to SimNodes as their firmware. Allocation-free.
 #pragma once
 
-#include <mrqp/drivers/sim_bus.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
+#include <mrqp/drivers/sim_bus.hpp>
 
 #include <array>
 #include <cstdint>
@@ -20,24 +20,20 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
  public:
   static constexpr std::size_t kMax = 32;
 
-  FakeMitMotors(SimNode& node, TimeNs response_delay = 30000) : node_(node), delay_(response_delay)
-  {
+  FakeMitMotors(SimNode& node, TimeNs response_delay = 30000) : node_(node), delay_(response_delay) {
     node_.set_listener(this);
   }
   /// Adds a motor with `id` (ranges: the defaults).
-  void add(std::uint8_t id) noexcept
-  {
+  void add(std::uint8_t id) noexcept {
     motors_[count_].id = id;
     ++count_;
   }
-  void set_silent(std::uint8_t id, bool silent) noexcept
-  {
+  void set_silent(std::uint8_t id, bool silent) noexcept {
     if (Motor* m = find(id)) {
       m->silent = silent;
     }
   }
-  bool enabled(std::uint8_t id) const noexcept
-  {
+  bool enabled(std::uint8_t id) const noexcept {
     for (std::size_t i = 0; i < count_; ++i) {
       if (motors_[i].id == id) {
         return motors_[i].enabled;
@@ -45,8 +41,7 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     }
     return false;
   }
-  float position(std::uint8_t id) const noexcept
-  {
+  float position(std::uint8_t id) const noexcept {
     for (std::size_t i = 0; i < count_; ++i) {
       if (motors_[i].id == id) {
         return motors_[i].p;
@@ -54,8 +49,7 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     }
     return 0.0f;
   }
-  unsigned frames(std::uint8_t id) const noexcept
-  {
+  unsigned frames(std::uint8_t id) const noexcept {
     for (std::size_t i = 0; i < count_; ++i) {
       if (motors_[i].id == id) {
         return motors_[i].frames;
@@ -63,15 +57,13 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     }
     return 0;
   }
-  void set_position(std::uint8_t id, float p) noexcept
-  {
+  void set_position(std::uint8_t id, float p) noexcept {
     if (Motor* m = find(id)) {
       m->p = p;
     }
   }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override
-  {
+  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame) {
       return;
     }
@@ -85,22 +77,29 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     }
     ++m->frames;
     switch (k) {
-    case MRQP_FW_MIT_KIND_ENABLE: m->enabled = true; break;
-    case MRQP_FW_MIT_KIND_DISABLE: m->enabled = false; break;
-    case MRQP_FW_MIT_KIND_ZERO: m->p = 0.0f; break;
-    case MRQP_FW_MIT_KIND_COMMAND: {
-      mrqp_fw_mit_cmd c;
-      if (mrqp_fw_mit_unpack_cmd(&ranges_, &rx.frame, nullptr, &c) == MRQP_FW_OK && m->enabled) {
-        // Ideal actuator: reaches the stiffness-weighted target, torque = the commanded effort.
-        m->t = c.kp * (c.p - m->p) + c.t;
-        if (c.kp > 0.0f) {
-          m->p = c.p;
+      case MRQP_FW_MIT_KIND_ENABLE:
+        m->enabled = true;
+        break;
+      case MRQP_FW_MIT_KIND_DISABLE:
+        m->enabled = false;
+        break;
+      case MRQP_FW_MIT_KIND_ZERO:
+        m->p = 0.0f;
+        break;
+      case MRQP_FW_MIT_KIND_COMMAND: {
+        mrqp_fw_mit_cmd c;
+        if (mrqp_fw_mit_unpack_cmd(&ranges_, &rx.frame, nullptr, &c) == MRQP_FW_OK && m->enabled) {
+          // Ideal actuator: reaches the stiffness-weighted target, torque = the commanded effort.
+          m->t = c.kp * (c.p - m->p) + c.t;
+          if (c.kp > 0.0f) {
+            m->p = c.p;
+          }
+          m->v = c.v;
         }
-        m->v = c.v;
+        break;
       }
-      break;
-    }
-    case MRQP_FW_MIT_KIND_INVALID: break;
+      case MRQP_FW_MIT_KIND_INVALID:
+        break;
     }
     if (m->silent) {
       return;
@@ -122,8 +121,7 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     float t = 0.0f;
     unsigned frames = 0;
   };
-  Motor* find(std::uint8_t id) noexcept
-  {
+  Motor* find(std::uint8_t id) noexcept {
     for (std::size_t i = 0; i < count_; ++i) {
       if (motors_[i].id == id) {
         return &motors_[i];
@@ -143,8 +141,7 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
 class FakeHandBoard final : public mrqp::drivers::SimListener {
  public:
   FakeHandBoard(SimNode& node, unsigned board, unsigned joints, TimeNs response_delay = 20000)
-      : node_(node), board_(board), joints_(joints), delay_(response_delay)
-  {
+      : node_(node), board_(board), joints_(joints), delay_(response_delay) {
     node_.set_listener(this);
   }
   void set_silent(bool s) noexcept { silent_ = s; }
@@ -157,8 +154,7 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
   float position(unsigned j) const noexcept { return joints_state_[j].position; }
   unsigned commands() const noexcept { return commands_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override
-  {
+  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame || rx.frame.id != MRQP_FW_HAND_FD_CMD_ID_BASE + board_) {
       return;
     }
@@ -189,8 +185,8 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
     fb.cmd_seq_echo = seq_echo_;
     fb.counter = ++counter_;
     fb.mode = mode_;
-    fb.status = static_cast<std::uint8_t>((mode_ != MRQP_FW_HAND_MODE_DISABLED ? MRQP_FW_HAND_STATUS_ENABLED : 0u) |
-                                          status_ | extra_status_);
+    fb.status = static_cast<std::uint8_t>(
+        (mode_ != MRQP_FW_HAND_MODE_DISABLED ? MRQP_FW_HAND_STATUS_ENABLED : 0u) | status_ | extra_status_);
     fb.first_joint = c.first_joint;
     fb.count = c.count;
     for (unsigned j = 0; j < c.count; ++j) {
@@ -223,10 +219,10 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
 class FakeFtSensor final : public mrqp::drivers::SimListener {
  public:
   FakeFtSensor(SimNode& node, unsigned node_id, bool fd, TimeNs response_delay = 15000)
-      : node_(node), id_(node_id), fd_(fd), delay_(response_delay)
-  {
+      : node_(node), id_(node_id), fd_(fd), delay_(response_delay) {
     node_.set_listener(this);
-    scale_ = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
+    scale_ = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT
+                : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
   }
   void set_wrench(const std::array<double, 6>& w) noexcept { wrench_ = w; }
   void set_silent(bool s) noexcept { silent_ = s; }
@@ -237,8 +233,7 @@ class FakeFtSensor final : public mrqp::drivers::SimListener {
   bool tared() const noexcept { return tared_; }
   unsigned syncs() const noexcept { return syncs_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override
-  {
+  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame) {
       return;
     }
@@ -305,8 +300,7 @@ class FakeFtSensor final : public mrqp::drivers::SimListener {
 class FakeImu final : public mrqp::drivers::SimListener {
  public:
   FakeImu(SimNode& node, unsigned node_id, TimeNs response_delay = 15000)
-      : node_(node), id_(node_id), delay_(response_delay)
-  {
+      : node_(node), id_(node_id), delay_(response_delay) {
     node_.set_listener(this);
     sample_.orientation[0] = 1.0;
   }
@@ -315,8 +309,7 @@ class FakeImu final : public mrqp::drivers::SimListener {
   void skip_seq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
   unsigned syncs() const noexcept { return syncs_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override
-  {
+  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame || rx.frame.id != MRQP_FW_COB_SYNC || silent_) {
       return;
     }

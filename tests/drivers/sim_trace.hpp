@@ -13,8 +13,7 @@ namespace drvtest {
 using mrqp::drivers::TimeNs;
 
 /// candump-like text: "201#0600000000000000" (classic), "140##1<hex>" (FD; 1 = BRS flag).
-inline std::string frame_str(const mrqp_fw_frame& f)
-{
+inline std::string frame_str(const mrqp_fw_frame& f) {
   static const char* hex = "0123456789ABCDEF";
   std::string s;
   for (int i = 2; i >= 0; --i) {
@@ -32,8 +31,8 @@ inline std::string frame_str(const mrqp_fw_frame& f)
   return s;
 }
 
-inline mrqp_fw_frame make_frame(std::uint32_t id, std::initializer_list<std::uint8_t> data, std::uint8_t flags = 0)
-{
+inline mrqp_fw_frame make_frame(std::uint32_t id, std::initializer_list<std::uint8_t> data,
+                                std::uint8_t flags = 0) {
   mrqp_fw_frame f{};
   f.id = id;
   f.flags = flags;
@@ -49,8 +48,7 @@ class WireLog final : public mrqp::drivers::SimTap {
   void on_wire(const mrqp::drivers::WireEvent& e) noexcept override { events.push_back(e); }
 
   /// Successfully delivered frames (text), optionally only those sent by `node`, from time `from`.
-  std::vector<std::string> frames(long node = -1, TimeNs from = 0) const
-  {
+  std::vector<std::string> frames(long node = -1, TimeNs from = 0) const {
     std::vector<std::string> out;
     for (const auto& e : events) {
       if (e.outcome == mrqp::drivers::WireOutcome::Delivered && e.start >= from &&
@@ -61,8 +59,7 @@ class WireLog final : public mrqp::drivers::SimTap {
     return out;
   }
   /// Delivered frames between [from, to).
-  std::vector<std::string> frames_between(TimeNs from, TimeNs to) const
-  {
+  std::vector<std::string> frames_between(TimeNs from, TimeNs to) const {
     std::vector<std::string> out;
     for (const auto& e : events) {
       if (e.outcome == mrqp::drivers::WireOutcome::Delivered && e.start >= from && e.start < to) {

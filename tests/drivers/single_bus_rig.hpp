@@ -20,8 +20,7 @@ namespace drvtest {
 template <class Rig, class Driver>
 struct SingleBusRig {
   /// A classic bus, or with `fd` a CAN FD bus (5 Mbit/s data phase) and an FD master.
-  SingleBusRig(bool fd, TimeNs cycle_period) : period(cycle_period), bus(bus_config(fd))
-  {
+  SingleBusRig(bool fd, TimeNs cycle_period) : period(cycle_period), bus(bus_config(fd)) {
     bus.set_tap(&log);
     mrqp::drivers::SimNodeConfig mc;
     mc.fd = fd;
@@ -31,8 +30,7 @@ struct SingleBusRig {
   }
 
   /// One control cycle at time t, then t += period.
-  const mrqp::drivers::FaultReport& cycle()
-  {
+  const mrqp::drivers::FaultReport& cycle() {
     bus.advance_to(t);
     router->poll(t);
     const mrqp::drivers::FaultReport& r = driver->update(t);
@@ -46,14 +44,12 @@ struct SingleBusRig {
   }
 
   /// Frames the master sent since `from`, the last transmit's included.
-  std::vector<std::string> master_frames(TimeNs from)
-  {
+  std::vector<std::string> master_frames(TimeNs from) {
     bus.advance_to(t);
     return log.frames(static_cast<long>(master->index()), from);
   }
 
-  static mrqp::drivers::SimBusConfig bus_config(bool fd)
-  {
+  static mrqp::drivers::SimBusConfig bus_config(bool fd) {
     mrqp::drivers::SimBusConfig bc;
     bc.data_bps = fd ? 5000000u : 0u;
     return bc;

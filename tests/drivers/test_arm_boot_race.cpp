@@ -19,8 +19,7 @@ using namespace mrqp::drivers;
 namespace {
 
 /// Start times of the frames `text_prefix` on bus 0 of the rig ("701#00": boot-up of node 1).
-std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix)
-{
+std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix) {
   r.flush();
   std::vector<TimeNs> out;
   for (const WireEvent& e : r.logs[0]->events) {
@@ -32,8 +31,7 @@ std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix)
 }
 
 /// Cycles until Running / Failed; ORs every report's flags into *flags.
-void boot_through(drvtest::ArmRig& r, std::uint32_t* flags)
-{
+void boot_through(drvtest::ArmRig& r, std::uint32_t* flags) {
   for (int k = 0; k < 400 && r.arm->phase() != ArmPhase::Running && r.arm->phase() != ArmPhase::Failed; ++k) {
     *flags |= r.cycle().flags;
   }
@@ -45,8 +43,7 @@ void boot_through(drvtest::ArmRig& r, std::uint32_t* flags)
 }  // namespace
 
 TEST_CASE("drivers: arm boot race: a power-up boot-up on the wire as the reset goes out (TX echo)",
-          "[drivers][arm][race]")
-{
+          "[drivers][arm][race]") {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   // The drive powers up at 0 and sends its boot-up at 2 ms; the master starts at 2 ms, after
@@ -64,7 +61,7 @@ TEST_CASE("drivers: arm boot race: a power-up boot-up on the wire as the reset g
   const std::vector<TimeNs> early = times_of(r, "701#00");
   REQUIRE(resets.size() == 1u);
   REQUIRE(early.size() == 1u);
-  REQUIRE(early[0] < resets[0]);                   // the power-up boot-up went first...
+  REQUIRE(early[0] < resets[0]);                      // the power-up boot-up went first...
   REQUIRE(resets[0] - early[0] < microseconds(200));  // ... just before the reset
 
   std::uint32_t flags = 0;
@@ -73,13 +70,13 @@ TEST_CASE("drivers: arm boot race: a power-up boot-up on the wire as the reset g
   const std::vector<TimeNs> sdo = times_of(r, "601#");
   REQUIRE(bootups.size() == 2u);  // power-up, then the answer to the reset
   REQUIRE(!sdo.empty());
-  CHECK(sdo[0] > bootups[1]);     // configured only once the reset was answered
+  CHECK(sdo[0] > bootups[1]);  // configured only once the reset was answered
   CHECK(r.arm->phase() == ArmPhase::Running);
   CHECK((flags & (fault::kStateMismatch | fault::kBootFailed)) == 0u);
 }
 
-TEST_CASE("drivers: arm boot race: a boot-up received before the reset was sent (no echo)", "[drivers][arm][race]")
-{
+TEST_CASE("drivers: arm boot race: a boot-up received before the reset was sent (no echo)",
+          "[drivers][arm][race]") {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   // Boot-up at 1.9 ms after power-up; the caller starts the master at 2 ms before polling the
@@ -104,8 +101,8 @@ TEST_CASE("drivers: arm boot race: a boot-up received before the reset was sent 
   CHECK((flags & (fault::kStateMismatch | fault::kBootFailed)) == 0u);
 }
 
-TEST_CASE("drivers: SimBus TX echo: own frames in wire order, routed to on_own_frame only", "[drivers][arm][race]")
-{
+TEST_CASE("drivers: SimBus TX echo: own frames in wire order, routed to on_own_frame only",
+          "[drivers][arm][race]") {
   SimBus bus;
   SimNodeConfig mc;
   mc.echo_own = true;
@@ -134,8 +131,7 @@ TEST_CASE("drivers: SimBus TX echo: own frames in wire order, routed to on_own_f
 
   // Routed: the echo goes to on_own_frame of every handler, never to on_frame, never unknown.
   struct Handler final : FrameHandler {
-    Claim on_frame(const BusRouter&, const RxFrame&, TimeNs) noexcept override
-    {
+    Claim on_frame(const BusRouter&, const RxFrame&, TimeNs) noexcept override {
       ++frames;
       return Claim::NotMine;
     }

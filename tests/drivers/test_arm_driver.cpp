@@ -20,8 +20,7 @@ using drvtest::make_frame;
 namespace {
 
 // Expedited SDO download request, CiA 301: byte 0 = 001 0 nn 1 1 with nn = 4 - size.
-std::string sdo_write(unsigned node, unsigned index, unsigned sub, unsigned size, std::uint32_t value)
-{
+std::string sdo_write(unsigned node, unsigned index, unsigned sub, unsigned size, std::uint32_t value) {
   char buf[64];
   const unsigned cs = 0x23u | ((4u - size) << 2);
   std::snprintf(buf, sizeof(buf), "%03X#%02X%02X%02X%02X%02X%02X%02X%02X", 0x600 + node, cs, index & 0xFFu,
@@ -31,10 +30,10 @@ std::string sdo_write(unsigned node, unsigned index, unsigned sub, unsigned size
 }
 
 // Download response: 0x60, index, sub, zeros.
-std::string sdo_ack(unsigned node, unsigned index, unsigned sub)
-{
+std::string sdo_ack(unsigned node, unsigned index, unsigned sub) {
   char buf[64];
-  std::snprintf(buf, sizeof(buf), "%03X#60%02X%02X%02X00000000", 0x580 + node, index & 0xFFu, index >> 8, sub);
+  std::snprintf(buf, sizeof(buf), "%03X#60%02X%02X%02X00000000", 0x580 + node, index & 0xFFu, index >> 8,
+                sub);
   return buf;
 }
 
@@ -46,32 +45,46 @@ struct Write {
 // The boot configuration of node n (period 1 ms, heartbeat 100 ms, TPDO2 on, CSP), by hand:
 // CiA 301 PDO procedure (disable, transmission type, clear mapping, entries, count, enable),
 // mapping entries = index << 16 | sub << 8 | bits (docs/protocol.md).
-std::vector<Write> boot_writes(unsigned n, bool consumer = false)
-{
+std::vector<Write> boot_writes(unsigned n, bool consumer = false) {
   std::vector<Write> w = {{0x1017, 0, 2, 100}};
   if (consumer) {
     w.push_back({0x1016, 1, 4, (0x7Fu << 16) | 30u});
   }
   const std::vector<Write> rest = {
       {0x1006, 0, 4, 1000},
-      {0x1400, 1, 4, 0x80000200u + n}, {0x1400, 2, 1, 1}, {0x1600, 0, 1, 0},
-      {0x1600, 1, 4, 0x60400010u}, {0x1600, 2, 4, 0x607A0020u}, {0x1600, 3, 4, 0x60710010u},
-      {0x1600, 0, 1, 3}, {0x1400, 1, 4, 0x200u + n},
-      {0x1800, 1, 4, 0x80000180u + n}, {0x1800, 2, 1, 1}, {0x1A00, 0, 1, 0},
-      {0x1A00, 1, 4, 0x60410010u}, {0x1A00, 2, 4, 0x60640020u}, {0x1A00, 3, 4, 0x60770010u},
-      {0x1A00, 0, 1, 3}, {0x1800, 1, 4, 0x180u + n},
-      {0x1801, 1, 4, 0x80000280u + n}, {0x1801, 2, 1, 1}, {0x1A01, 0, 1, 0},
-      {0x1A01, 1, 4, 0x606C0020u}, {0x1A01, 2, 4, 0x603F0010u}, {0x1A01, 3, 4, 0x60610008u},
-      {0x1A01, 0, 1, 3}, {0x1801, 1, 4, 0x280u + n},
-      {0x1802, 1, 4, 0x80000380u + n}, {0x1803, 1, 4, 0x80000480u + n},
+      {0x1400, 1, 4, 0x80000200u + n},
+      {0x1400, 2, 1, 1},
+      {0x1600, 0, 1, 0},
+      {0x1600, 1, 4, 0x60400010u},
+      {0x1600, 2, 4, 0x607A0020u},
+      {0x1600, 3, 4, 0x60710010u},
+      {0x1600, 0, 1, 3},
+      {0x1400, 1, 4, 0x200u + n},
+      {0x1800, 1, 4, 0x80000180u + n},
+      {0x1800, 2, 1, 1},
+      {0x1A00, 0, 1, 0},
+      {0x1A00, 1, 4, 0x60410010u},
+      {0x1A00, 2, 4, 0x60640020u},
+      {0x1A00, 3, 4, 0x60770010u},
+      {0x1A00, 0, 1, 3},
+      {0x1800, 1, 4, 0x180u + n},
+      {0x1801, 1, 4, 0x80000280u + n},
+      {0x1801, 2, 1, 1},
+      {0x1A01, 0, 1, 0},
+      {0x1A01, 1, 4, 0x606C0020u},
+      {0x1A01, 2, 4, 0x603F0010u},
+      {0x1A01, 3, 4, 0x60610008u},
+      {0x1A01, 0, 1, 3},
+      {0x1801, 1, 4, 0x280u + n},
+      {0x1802, 1, 4, 0x80000380u + n},
+      {0x1803, 1, 4, 0x80000480u + n},
       {0x6060, 0, 1, 8},
   };
   w.insert(w.end(), rest.begin(), rest.end());
   return w;
 }
 
-std::string rpdo(unsigned node, std::uint16_t cw, std::int32_t pos, std::int16_t torque)
-{
+std::string rpdo(unsigned node, std::uint16_t cw, std::int32_t pos, std::int16_t torque) {
   char buf[64];
   const auto p = static_cast<std::uint32_t>(pos);
   const auto t = static_cast<std::uint16_t>(torque);
@@ -80,8 +93,7 @@ std::string rpdo(unsigned node, std::uint16_t cw, std::int32_t pos, std::int16_t
   return buf;
 }
 
-std::vector<std::string> only(const std::vector<std::string>& frames, unsigned id)
-{
+std::vector<std::string> only(const std::vector<std::string>& frames, unsigned id) {
   char prefix[8];
   std::snprintf(prefix, sizeof(prefix), "%03X#", id);
   std::vector<std::string> out;
@@ -93,14 +105,12 @@ std::vector<std::string> only(const std::vector<std::string>& frames, unsigned i
   return out;
 }
 
-std::uint16_t cw_of(const std::string& rpdo_text)
-{
+std::uint16_t cw_of(const std::string& rpdo_text) {
   return static_cast<std::uint16_t>(std::stoul(rpdo_text.substr(4, 2), nullptr, 16) |
                                     (std::stoul(rpdo_text.substr(6, 2), nullptr, 16) << 8));
 }
 
-ArmConfig base_config()
-{
+ArmConfig base_config() {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   return c;
@@ -108,8 +118,8 @@ ArmConfig base_config()
 
 }  // namespace
 
-TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configuration, NMT start, PDOs)", "[drivers][arm]")
-{
+TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configuration, NMT start, PDOs)",
+          "[drivers][arm]") {
   ArmRig rig({{0, 1}, {0, 2}}, base_config());
   REQUIRE(rig.arm != nullptr);
   const int cycles = rig.boot();
@@ -172,8 +182,8 @@ TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configurat
   CHECK(rig.arm->faults().flags == 0u);
 }
 
-TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbeat every period", "[drivers][arm]")
-{
+TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbeat every period",
+          "[drivers][arm]") {
   ArmConfig c = base_config();
   c.master_node = 0x7F;
   c.master_heartbeat_ms = 10;
@@ -212,8 +222,8 @@ TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbe
   }
 }
 
-TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO2 by priority", "[drivers][arm]")
-{
+TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO2 by priority",
+          "[drivers][arm]") {
   ArmRig rig({{0, 1}, {0, 2}}, base_config(), 64, {1000, -2000});
   REQUIRE(rig.arm != nullptr);
   rig.boot();
@@ -226,8 +236,7 @@ TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO
   // Hand-encoded: disabled (cw 0), hold the measured position; statusword 0x0050 = switch on
   // disabled + voltage enabled; TPDO2: velocity 0, error 0, mode 8.
   const std::vector<std::string> expected = {
-      rpdo(1, 0, 1000, 0), rpdo(2, 0, -2000, 0), "080#",
-      "181#5000E80300000000", "182#500030F8FFFF0000",
+      rpdo(1, 0, 1000, 0),  rpdo(2, 0, -2000, 0), "080#", "181#5000E80300000000", "182#500030F8FFFF0000",
       "281#00000000000008", "282#00000000000008",
   };
   CHECK(rig.logs[0]->frames_between(t0, rig.t) == expected);
@@ -253,8 +262,7 @@ TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO
   CHECK(d1.nmt_state == MRQP_FW_NMT_STATE_BOOTUP);  // only the boot-up message so far (heartbeat 100 ms)
 }
 
-TEST_CASE("drivers: SYNC with a counter wraps at the configured overflow", "[drivers][arm]")
-{
+TEST_CASE("drivers: SYNC with a counter wraps at the configured overflow", "[drivers][arm]") {
   ArmConfig c = base_config();
   c.sync_counter_overflow = 3;
   ArmRig rig({{0, 1}}, c);
@@ -268,8 +276,8 @@ TEST_CASE("drivers: SYNC with a counter wraps at the configured overflow", "[dri
         std::vector<std::string>{"080#01", "080#02", "080#03", "080#01", "080#02"});
 }
 
-TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, setpoints after enabling", "[drivers][arm]")
-{
+TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, setpoints after enabling",
+          "[drivers][arm]") {
   ArmConfig c = base_config();
   ArmDriveConfig limits;
   limits.position_max = 1.0;
@@ -280,7 +288,10 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   rig.cycle();
   rig.cycle();
   const TimeNs t_enable = rig.t;
-  rig.hook = [](ArmRig& r) { r.arm->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_enable(r.t);
+    r.hook = nullptr;
+  };
   int cycles = 0;
   do {
     rig.cycle();
@@ -330,7 +341,10 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
 
   // Beyond position_max (1 rad): clamped and flagged.
   t_sp = rig.t;
-  rig.hook = [](ArmRig& r) { CHECK(r.arm->set_position(0, 2.0) == SetpointResult::Limited); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    CHECK(r.arm->set_position(0, 2.0) == SetpointResult::Limited);
+    r.hook = nullptr;
+  };
   rig.cycle();
   const FaultReport& rep3 = rig.cycle();
   CHECK((rep3.devices[0].flags & fault::kSetpointLimited) != 0u);
@@ -339,7 +353,10 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
 
   // Disable: Disable voltage (transition 9) straight to Switch on disabled.
   const TimeNs t_dis = rig.t;
-  rig.hook = [](ArmRig& r) { r.arm->request_disable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_disable(r.t);
+    r.hook = nullptr;
+  };
   cycles = 0;
   do {
     rig.cycle();
@@ -353,12 +370,15 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   (void)t_enable;
 }
 
-TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled, error reset clears it", "[drivers][arm]")
-{
+TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled, error reset clears it",
+          "[drivers][arm]") {
   ArmRig rig({{0, 1}, {0, 2}}, base_config());
   REQUIRE(rig.arm != nullptr);
   rig.boot();
-  rig.hook = [](ArmRig& r) { r.arm->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_enable(r.t);
+    r.hook = nullptr;
+  };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }
@@ -385,7 +405,10 @@ TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled
   // Enabling again: fault reset (rising edge of bit 7), then the enabling sequence; the drive
   // announces "error reset" (EMCY 0x0000) which clears the EMCY flag.
   const TimeNs t0 = rig.t;
-  rig.hook = [](ArmRig& r) { r.arm->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_enable(r.t);
+    r.hook = nullptr;
+  };
   for (int k = 0; k < 8; ++k) {
     rig.cycle();
   }
@@ -403,8 +426,8 @@ TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled
   CHECK(r3.flags == 0u);
 }
 
-TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the consumer time", "[drivers][arm]")
-{
+TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the consumer time",
+          "[drivers][arm]") {
   ArmConfig c = base_config();
   c.producer_heartbeat_ms = 10;
   c.heartbeat_timeout = milliseconds(25);
@@ -454,8 +477,7 @@ TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the cons
   CHECK(missing_at < detected);
 }
 
-TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th cycle", "[drivers][arm]")
-{
+TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th cycle", "[drivers][arm]") {
   ArmConfig c = base_config();
   c.feedback_missing_cycles = 3;
   ArmRig rig({{0, 1}, {0, 2}}, c);
@@ -484,8 +506,7 @@ TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th
   CHECK(!r4.has(fault::kFeedbackMissing));
 }
 
-TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[drivers][arm]")
-{
+TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[drivers][arm]") {
   ArmConfig c = base_config();
   c.cycle_period = milliseconds(5);  // room for the injected frames after the cyclic traffic
   ArmRig rig({{0, 1}, {0, 2}}, c, 64, {1000, 0});
@@ -498,13 +519,13 @@ TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[dri
   REQUIRE(rig.arm->faults().flags == 0u);
   const TimeNs quiet = rig.last + microseconds(1500);  // after this cycle's traffic
   const mrqp_fw_frame bad[] = {
-      make_frame(0x181, {0x50, 0x00, 0x99, 0x99, 0x00, 0x00, 0x00}),        // TPDO1 with DLC 7
-      make_frame(0x081, {0x10, 0x23, 0x40, 0, 0, 0, 0, 0}),                 // EMCY: reserved bit 6
-      make_frame(0x701, {0x42}),                                            // heartbeat: no such state
-      make_frame(0x581, {0x60, 0x17, 0x10, 0, 0, 0, 0, 0}),                 // SDO answer, nothing asked
-      make_frame(0x282, {0, 0, 0, 0, 0, 0, 0, 0}),                          // TPDO2 with DLC 8
-      make_frame(0x3F0, {1, 2, 3}),                                         // nobody's identifier
-      make_frame(0x183, {0x27, 0, 0, 0, 0, 0, 0, 0}),                       // node 3 is not configured
+      make_frame(0x181, {0x50, 0x00, 0x99, 0x99, 0x00, 0x00, 0x00}),  // TPDO1 with DLC 7
+      make_frame(0x081, {0x10, 0x23, 0x40, 0, 0, 0, 0, 0}),           // EMCY: reserved bit 6
+      make_frame(0x701, {0x42}),                                      // heartbeat: no such state
+      make_frame(0x581, {0x60, 0x17, 0x10, 0, 0, 0, 0, 0}),           // SDO answer, nothing asked
+      make_frame(0x282, {0, 0, 0, 0, 0, 0, 0, 0}),                    // TPDO2 with DLC 8
+      make_frame(0x3F0, {1, 2, 3}),                                   // nobody's identifier
+      make_frame(0x183, {0x27, 0, 0, 0, 0, 0, 0, 0}),                 // node 3 is not configured
   };
   for (const mrqp_fw_frame& f : bad) {
     REQUIRE(injector->send_at(f, quiet) == SendResult::Ok);
@@ -526,8 +547,7 @@ TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[dri
   CHECK(r2.buses[0].unknown_total == 2u);
 }
 
-TEST_CASE("drivers: an SDO abort fails the boot and names the object", "[drivers][arm]")
-{
+TEST_CASE("drivers: an SDO abort fails the boot and names the object", "[drivers][arm]") {
   ArmRig rig({{0, 1}, {0, 2}}, base_config());
   REQUIRE(rig.arm != nullptr);
   rig.fakes[1]->abort_on_write(0x6060, 0, MRQP_FW_SDO_ABORT_INVALID_VALUE);
@@ -543,8 +563,8 @@ TEST_CASE("drivers: an SDO abort fails the boot and names the object", "[drivers
   CHECK(rig.fakes[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
 }
 
-TEST_CASE("drivers: a drive that never boots times out, a drive that stops answering SDO times out", "[drivers][arm]")
-{
+TEST_CASE("drivers: a drive that never boots times out, a drive that stops answering SDO times out",
+          "[drivers][arm]") {
   ArmConfig c = base_config();
   c.boot_timeout = milliseconds(50);
   ArmRig rig({{0, 1}, {0, 2}}, c);
@@ -554,7 +574,8 @@ TEST_CASE("drivers: a drive that never boots times out, a drive that stops answe
   CHECK(rig.arm->phase() == ArmPhase::Failed);
   CHECK(cycles == 52);  // the first cycle after 50 ms (update at 51 ms)
   const FaultReport& r = rig.arm->faults();
-  CHECK((r.devices[1].flags & (fault::kTimeout | fault::kBootFailed)) == (fault::kTimeout | fault::kBootFailed));
+  CHECK((r.devices[1].flags & (fault::kTimeout | fault::kBootFailed)) ==
+        (fault::kTimeout | fault::kBootFailed));
   CHECK(r.devices[0].flags == 0u);
 
   ArmConfig c2 = base_config();
@@ -581,8 +602,7 @@ TEST_CASE("drivers: a drive that never boots times out, a drive that stops answe
   CHECK(abort_seen);
 }
 
-TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC", "[drivers][arm]")
-{
+TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC", "[drivers][arm]") {
   // The same node ids on two buses are two different drives.
   ArmRig rig({{0, 1}, {0, 2}, {1, 1}, {1, 2}}, base_config(), 64, {10, 20, 30, 40});
   REQUIRE(rig.arm != nullptr);
@@ -612,8 +632,7 @@ TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC"
   CHECK(b0.result().frames_per_cycle == Approx(1 + 2 * 3 + 2 * 0.01));
 }
 
-TEST_CASE("drivers: bus-off and error-passive states reach the fault report", "[drivers][arm]")
-{
+TEST_CASE("drivers: bus-off and error-passive states reach the fault report", "[drivers][arm]") {
   ArmRig rig({{0, 1}}, base_config());
   REQUIRE(rig.arm != nullptr);
   rig.boot();
@@ -645,8 +664,8 @@ TEST_CASE("drivers: bus-off and error-passive states reach the fault report", "[
   (void)passive;
 }
 
-TEST_CASE("drivers: a full transmit queue is counted, one-shot frames are retried next cycle", "[drivers][arm]")
-{
+TEST_CASE("drivers: a full transmit queue is counted, one-shot frames are retried next cycle",
+          "[drivers][arm]") {
   ArmRig rig({{0, 1}, {0, 2}, {0, 3}}, base_config(), 2);
   REQUIRE(rig.arm != nullptr);
   rig.arm->start(0);
@@ -671,8 +690,7 @@ TEST_CASE("drivers: a full transmit queue is counted, one-shot frames are retrie
   CHECK(r.has(fault::kFeedbackMissing));
 }
 
-TEST_CASE("drivers: invalid configurations are refused with a message naming the field", "[drivers][arm]")
-{
+TEST_CASE("drivers: invalid configurations are refused with a message naming the field", "[drivers][arm]") {
   SimBus bus;
   SimNode* m = bus.add_node(SimNodeConfig{});
   BusRouter router(*m);
@@ -708,8 +726,7 @@ TEST_CASE("drivers: invalid configurations are refused with a message naming the
   CHECK(ok != nullptr);
 }
 
-TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[drivers][arm]")
-{
+TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[drivers][arm]") {
   ArmConfig c = base_config();
   ArmDriveConfig d;
   d.mode = MRQP_FW_MODE_CST;
@@ -719,7 +736,10 @@ TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[dri
   ArmRig rig({{0, 4}}, c, 64, {777});
   REQUIRE(rig.arm != nullptr);
   rig.boot();
-  rig.hook = [](ArmRig& r) { r.arm->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_enable(r.t);
+    r.hook = nullptr;
+  };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }
@@ -742,8 +762,8 @@ TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[dri
   CHECK(rig.fakes[0]->target_torque() == -750);
 }
 
-TEST_CASE("drivers: feedback outside the configured range is flagged every cycle it lasts", "[drivers][arm]")
-{
+TEST_CASE("drivers: feedback outside the configured range is flagged every cycle it lasts",
+          "[drivers][arm]") {
   ArmConfig c = base_config();
   ArmDriveConfig d;
   d.position_max = 0.01;  // rad; the drive sits at 1000 increments = 0.01198 rad
@@ -759,13 +779,15 @@ TEST_CASE("drivers: feedback outside the configured range is flagged every cycle
   CHECK(rig.arm->drive(0).position == Approx(1000.0 * 2.0 * M_PI / 524288.0));  // still reported
 }
 
-TEST_CASE("drivers: a mode display other than the configured mode is a state mismatch", "[drivers][arm]")
-{
+TEST_CASE("drivers: a mode display other than the configured mode is a state mismatch", "[drivers][arm]") {
   ArmRig rig({{0, 1}}, base_config());
   REQUIRE(rig.arm != nullptr);
   rig.fakes[0]->force_mode_display(MRQP_FW_MODE_CST);
   rig.boot();
-  rig.hook = [](ArmRig& r) { r.arm->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](ArmRig& r) {
+    r.arm->request_enable(r.t);
+    r.hook = nullptr;
+  };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }

@@ -25,8 +25,7 @@ using namespace mrqp::drivers;
 
 namespace {
 
-std::string hex(std::uint32_t v)
-{
+std::string hex(std::uint32_t v) {
   char b[16];
   std::snprintf(b, sizeof b, "%X", v);
   return b;
@@ -35,8 +34,7 @@ std::string hex(std::uint32_t v)
 /// Runs `cycles` cycles with `program(rig, k)` as the hook; appends the cycle records and then
 /// every bus's wire log to `out`.
 void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
-         const std::function<void(drvtest::ArmRig&, int)>& program, std::ostringstream& out)
-{
+         const std::function<void(drvtest::ArmRig&, int)>& program, std::ostringstream& out) {
   out << "== " << name << "\n";
   for (int k = 0; k < cycles; ++k) {
     rig.hook = [&program, k](drvtest::ArmRig& r) { program(r, k); };
@@ -44,13 +42,14 @@ void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
     out << "cycle " << k << " " << arm_phase_str(rig.arm->phase()) << " flags " << hex(rep.flags);
     for (std::size_t i = 0; i < rep.device_count; ++i) {
       const DeviceFaults& d = rep.devices[i];
-      out << " | " << hex(d.flags) << " m" << d.missed_cycles << " e" << d.emcy_count << " c" << d.corrupt_frames
-          << " q" << d.tx_queue_full << " a" << hex(d.sdo_abort_code) << "@" << hex(d.sdo_index) << "."
-          << unsigned(d.sdo_subindex);
+      out << " | " << hex(d.flags) << " m" << d.missed_cycles << " e" << d.emcy_count << " c"
+          << d.corrupt_frames << " q" << d.tx_queue_full << " a" << hex(d.sdo_abort_code) << "@"
+          << hex(d.sdo_index) << "." << unsigned(d.sdo_subindex);
     }
     for (std::size_t i = 0; i < rig.arm->drive_count(); ++i) {
       const ArmDriveState& s = rig.arm->drive(i);
-      out << " ; " << s.position_inc << " " << s.statusword << " " << unsigned(s.nmt_state) << " " << s.controlword;
+      out << " ; " << s.position_inc << " " << s.statusword << " " << unsigned(s.nmt_state) << " "
+          << s.controlword;
     }
     out << "\n";
   }
@@ -63,16 +62,14 @@ void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
   }
 }
 
-ArmConfig base_config()
-{
+ArmConfig base_config() {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   return c;
 }
 
 /// `echo`: the masters receive their own frames (TX echo); the wire output must not change.
-std::string record_all(bool echo)
-{
+std::string record_all(bool echo) {
   std::ostringstream out;
   {
     ArmConfig c = base_config();
@@ -92,35 +89,38 @@ std::string record_all(bool echo)
     drvtest::ArmRig rig({{0, 1}, {0, 2}, {1, 5}}, c, 64, {100, -200, 3000}, echo);
     REQUIRE(rig.arm != nullptr);
     rig.arm->start(rig.t);
-    run("two buses", rig, 620, [](drvtest::ArmRig& r, int k) {
-      if (k == 40 || k == 150) {
-        r.arm->request_enable(r.t);
-      }
-      if (k >= 40 && k < 250) {
-        (void)r.arm->set_position(0, 0.5 * std::sin(0.05 * k));
-        (void)r.arm->set_torque(0, 0.25);
-        (void)r.arm->set_torque(1, 5.0 * std::cos(0.05 * k));
-        (void)r.arm->set_position(2, k == 120 ? 9.0 : -0.3);  // once beyond the limit
-      }
-      if (k == 100) {
-        r.fakes[0]->inject_fault(0x2310, 0x03);
-      }
-      if (k == 250) {
-        r.arm->request_quick_stop(r.t);
-      }
-      if (k == 280) {
-        r.arm->request_disable(r.t);
-      }
-      if (k == 320) {
-        r.fakes[2]->power(false);
-      }
-      if (k == 400) {
-        r.fakes[2]->power(true);
-      }
-      if (k == 450) {
-        r.arm->start(r.t);
-      }
-    }, out);
+    run(
+        "two buses", rig, 620,
+        [](drvtest::ArmRig& r, int k) {
+          if (k == 40 || k == 150) {
+            r.arm->request_enable(r.t);
+          }
+          if (k >= 40 && k < 250) {
+            (void)r.arm->set_position(0, 0.5 * std::sin(0.05 * k));
+            (void)r.arm->set_torque(0, 0.25);
+            (void)r.arm->set_torque(1, 5.0 * std::cos(0.05 * k));
+            (void)r.arm->set_position(2, k == 120 ? 9.0 : -0.3);  // once beyond the limit
+          }
+          if (k == 100) {
+            r.fakes[0]->inject_fault(0x2310, 0x03);
+          }
+          if (k == 250) {
+            r.arm->request_quick_stop(r.t);
+          }
+          if (k == 280) {
+            r.arm->request_disable(r.t);
+          }
+          if (k == 320) {
+            r.fakes[2]->power(false);
+          }
+          if (k == 400) {
+            r.fakes[2]->power(true);
+          }
+          if (k == 450) {
+            r.arm->start(r.t);
+          }
+        },
+        out);
   }
   {
     ArmConfig c = base_config();
@@ -130,11 +130,14 @@ std::string record_all(bool echo)
     drvtest::ArmRig rig({{0, 3}, {0, 4}}, c, 64, {}, echo);
     REQUIRE(rig.arm != nullptr);
     rig.arm->start(rig.t);
-    run("reset communication", rig, 120, [](drvtest::ArmRig& r, int k) {
-      if (k == 60) {
-        r.arm->request_enable(r.t);
-      }
-    }, out);
+    run(
+        "reset communication", rig, 120,
+        [](drvtest::ArmRig& r, int k) {
+          if (k == 60) {
+            r.arm->request_enable(r.t);
+          }
+        },
+        out);
   }
   {
     ArmConfig c = base_config();
@@ -143,7 +146,8 @@ std::string record_all(bool echo)
     drvtest::ArmRig rig({{0, 7}}, c, 64, {}, echo);
     REQUIRE(rig.arm != nullptr);
     rig.arm->start(rig.t);
-    run("no reset, no SYNC", rig, 200, [](drvtest::ArmRig&, int) {}, out);
+    run(
+        "no reset, no SYNC", rig, 200, [](drvtest::ArmRig&, int) {}, out);
   }
   {
     ArmConfig c = base_config();
@@ -151,18 +155,22 @@ std::string record_all(bool echo)
     REQUIRE(rig.arm != nullptr);
     rig.fakes[1]->abort_on_write(0x1A00, 0, 0x06090030u);
     rig.arm->start(rig.t);
-    run("SDO abort", rig, 60, [](drvtest::ArmRig&, int) {}, out);
+    run(
+        "SDO abort", rig, 60, [](drvtest::ArmRig&, int) {}, out);
   }
   {
     ArmConfig c = base_config();
     drvtest::ArmRig rig({{0, 1}, {0, 2}, {0, 3}, {0, 4}}, c, 2, {}, echo);
     REQUIRE(rig.arm != nullptr);
     rig.arm->start(rig.t);
-    run("two-frame queue", rig, 300, [](drvtest::ArmRig& r, int k) {
-      if (k == 200) {
-        r.arm->request_enable(r.t);
-      }
-    }, out);
+    run(
+        "two-frame queue", rig, 300,
+        [](drvtest::ArmRig& r, int k) {
+          if (k == 200) {
+            r.arm->request_enable(r.t);
+          }
+        },
+        out);
   }
   {
     ArmConfig c = base_config();
@@ -171,15 +179,15 @@ std::string record_all(bool echo)
     REQUIRE(rig.arm != nullptr);
     rig.fakes[1]->power(false);
     rig.arm->start(rig.t);
-    run("boot timeout", rig, 50, [](drvtest::ArmRig&, int) {}, out);
+    run(
+        "boot timeout", rig, 50, [](drvtest::ArmRig&, int) {}, out);
   }
   return out.str();
 }
 
 }  // namespace
 
-TEST_CASE("drivers: arm master: wire output and fault reports as recorded", "[drivers][arm]")
-{
+TEST_CASE("drivers: arm master: wire output and fault reports as recorded", "[drivers][arm]") {
   const std::string path = std::string(MRQP_DRIVERS_TEST_DATA) + "/arm_wire.txt";
   const std::string now = record_all(false);
   const char* record = std::getenv("MRQP_RECORD_ARM_WIRE");

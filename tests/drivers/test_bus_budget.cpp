@@ -20,8 +20,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-BusSpec classic_1m(double hz, double limit = 0.8)
-{
+BusSpec classic_1m(double hz, double limit = 0.8) {
   BusSpec s;
   s.name = "arm0";
   s.cycle_hz = hz;
@@ -31,8 +30,8 @@ BusSpec classic_1m(double hz, double limit = 0.8)
 
 }  // namespace
 
-TEST_CASE("drivers: a 7-joint arm with a force/torque sensor at 1 kHz needs 2544..3090 bit times per ms", "[drivers][budget]")
-{
+TEST_CASE("drivers: a 7-joint arm with a force/torque sensor at 1 kHz needs 2544..3090 bit times per ms",
+          "[drivers][budget]") {
   // docs/protocol.md: 47 + 7 x (111 + 111 + 103) + 2 x 111 = 2544 bits without stuffing,
   // 55 + 7 x (135 + 135 + 125) + 2 x 135 = 3090 with worst-case stuffing.
   BusBudget b(classic_1m(1000.0));
@@ -63,8 +62,8 @@ TEST_CASE("drivers: a 7-joint arm with a force/torque sensor at 1 kHz needs 2544
   CHECK(lean.result().nominal_bits_worst == Approx(1945.0));
 }
 
-TEST_CASE("drivers: two arm joints fit a classic bus at 1 kHz within 70 %, three do not", "[drivers][budget]")
-{
+TEST_CASE("drivers: two arm joints fit a classic bus at 1 kHz within 70 %, three do not",
+          "[drivers][budget]") {
   // 55 + 2 x 270 = 595 bits: 59.5 %.
   BusBudget two(classic_1m(1000.0, 0.7));
   two.add_sync();
@@ -87,8 +86,8 @@ TEST_CASE("drivers: two arm joints fit a classic bus at 1 kHz within 70 %, three
   CHECK(!three.check(nullptr));
 }
 
-TEST_CASE("drivers: a 20-joint MIT hand at 1 kHz is 4.1..5.0 classic buses, on CAN FD 56..68 % of one", "[drivers][budget]")
-{
+TEST_CASE("drivers: a 20-joint MIT hand at 1 kHz is 4.1..5.0 classic buses, on CAN FD 56..68 % of one",
+          "[drivers][budget]") {
   BusBudget mit(classic_1m(1000.0));
   mit.add_mit_motors(20);
   // command 8 bytes (111..135) + reply 6 bytes (95..115) = 206..250 bits per joint.
@@ -119,8 +118,8 @@ TEST_CASE("drivers: a 20-joint MIT hand at 1 kHz is 4.1..5.0 classic buses, on C
   CHECK(fast.result().time_worst_ns == Approx(4 * 118750.0));
 }
 
-TEST_CASE("drivers: force/torque frames: the FD frame takes 88.6..105.6 us instead of 2 x 111..135", "[drivers][budget]")
-{
+TEST_CASE("drivers: force/torque frames: the FD frame takes 88.6..105.6 us instead of 2 x 111..135",
+          "[drivers][budget]") {
   BusSpec fd = classic_1m(1000.0);
   fd.data_bps = 5000000;
   BusBudget b(fd);
@@ -133,8 +132,8 @@ TEST_CASE("drivers: force/torque frames: the FD frame takes 88.6..105.6 us inste
   CHECK(c.result().time_worst_ns == Approx(270000.0));
 }
 
-TEST_CASE("drivers: periodic frames are averaged over the cycles, invalid budgets are refused", "[drivers][budget]")
-{
+TEST_CASE("drivers: periodic frames are averaged over the cycles, invalid budgets are refused",
+          "[drivers][budget]") {
   BusBudget b(classic_1m(1000.0));
   b.add_heartbeats(10, 0.1);  // 10 heartbeats every 100 ms: 0.1 per 1 ms cycle
   CHECK(b.result().frames_per_cycle == Approx(0.1));
@@ -154,8 +153,7 @@ TEST_CASE("drivers: periodic frames are averaged over the cycles, invalid budget
   CHECK_THAT(report, Contains("-> fits"));
 }
 
-TEST_CASE("drivers: bus plans for 7 drives + 20 hand joints + 2 F/T sensors", "[drivers][budget]")
-{
+TEST_CASE("drivers: bus plans for 7 drives + 20 hand joints + 2 F/T sensors", "[drivers][budget]") {
   const RobotTraffic robot;
   const BusKind classic{"classic 1 Mbit/s", 1000000, 0};
   const BusKind fd{"CAN FD 1/5 Mbit/s", 1000000, 5000000};
@@ -191,8 +189,7 @@ TEST_CASE("drivers: bus plans for 7 drives + 20 hand joints + 2 F/T sensors", "[
   CHECK(plan_buses(lean, classic, 1000.0, 0.8).max_drives_per_bus == 2u);
 }
 
-TEST_CASE("drivers: docs/drivers.md carries the generated budget tables", "[drivers][budget]")
-{
+TEST_CASE("drivers: docs/drivers.md carries the generated budget tables", "[drivers][budget]") {
   const std::string table = reference_budget_tables();
   CHECK_THAT(table, Contains("| 1000 Hz | classic 1 Mbit/s | 1 | 7: "));
   CHECK_THAT(table, Contains("| **14** |"));
@@ -205,8 +202,8 @@ TEST_CASE("drivers: docs/drivers.md carries the generated budget tables", "[driv
   CHECK(doc.find(table) != std::string::npos);
 }
 
-TEST_CASE("drivers: the simulated bus carries exactly the budgeted worst-case time per cycle", "[drivers][budget][simbus]")
-{
+TEST_CASE("drivers: the simulated bus carries exactly the budgeted worst-case time per cycle",
+          "[drivers][budget][simbus]") {
   // Second implementation: the arm driver with 7 fake drives at 250 Hz on the simulated bus
   // (worst-case stuffing). In steady state the wire is busy 55 + 7 x 395 = 2820 us per cycle,
   // which is what the budget declares for this driver (heartbeats off).

@@ -4,13 +4,13 @@
 // HeartbeatProducer.
 #include <catch2/catch.hpp>
 
+#include <mrqp/firmware_if/nmt.h>
+#include <mrqp/firmware_if/sdo.h>
 #include <mrqp/drivers/canopen/heartbeat_consumer.hpp>
 #include <mrqp/drivers/canopen/heartbeat_producer.hpp>
 #include <mrqp/drivers/canopen/nmt_boot.hpp>
 #include <mrqp/drivers/canopen/sdo_write_sequence.hpp>
 #include <mrqp/drivers/canopen/sync_producer.hpp>
-#include <mrqp/firmware_if/nmt.h>
-#include <mrqp/firmware_if/sdo.h>
 
 #include <string>
 #include <vector>
@@ -20,8 +20,7 @@
 using namespace mrqp::drivers;
 using drvtest::frame_str;
 
-TEST_CASE("drivers: canopen: NmtBoot commands and the boot-up wait", "[drivers][canopen]")
-{
+TEST_CASE("drivers: canopen: NmtBoot commands and the boot-up wait", "[drivers][canopen]") {
   NmtBoot n;
   mrqp_fw_frame f{};
   n.init(5, NmtReset::Node, milliseconds(100));
@@ -68,8 +67,8 @@ TEST_CASE("drivers: canopen: NmtBoot commands and the boot-up wait", "[drivers][
   CHECK_FALSE(n.process(seconds(10)));
 }
 
-TEST_CASE("drivers: canopen: SdoWriteSequence, one write in flight, abort and timeout", "[drivers][canopen]")
-{
+TEST_CASE("drivers: canopen: SdoWriteSequence, one write in flight, abort and timeout",
+          "[drivers][canopen]") {
   SdoWriteSequence s;
   s.init(3, {{0x1017, 0, 2, 100}, {0x6060, 0, 1, 8}, {0x1006, 0, 4, 1000}}, milliseconds(100));
   mrqp_fw_frame out{};
@@ -104,8 +103,7 @@ TEST_CASE("drivers: canopen: SdoWriteSequence, one write in flight, abort and ti
   CHECK(s.position() == 0u);
 }
 
-TEST_CASE("drivers: canopen: heartbeat consumer and producer, SYNC producer", "[drivers][canopen]")
-{
+TEST_CASE("drivers: canopen: heartbeat consumer and producer, SYNC producer", "[drivers][canopen]") {
   HeartbeatConsumer c;
   c.init(true, milliseconds(250));
   CHECK_FALSE(c.process(seconds(10)));  // not monitored before the first heartbeat

@@ -27,13 +27,11 @@ using namespace mrqp::drivers;
 namespace {
 
 /// A setpoint that changes every cycle (rad, rad/s, N m).
-double wave(int k, double amplitude, double phase)
-{
+double wave(int k, double amplitude, double phase) {
   return amplitude * std::sin(0.05 * static_cast<double>(k) + phase);
 }
 
-drvtest::ArmRig make_arm()
-{
+drvtest::ArmRig make_arm() {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   ArmDriveConfig csp;
@@ -45,8 +43,7 @@ drvtest::ArmRig make_arm()
 }
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
-  MitRig() : SingleBusRig(false, milliseconds(1))
-  {
+  MitRig() : SingleBusRig(false, milliseconds(1)) {
     motors = std::make_unique<drvtest::FakeMitMotors>(*bus.add_node(SimNodeConfig{}));
     MitHandConfig c;
     for (std::uint8_t id = 1; id <= 3; ++id) {
@@ -64,8 +61,7 @@ struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
 };
 
 struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
-  explicit FdRig(std::uint8_t mode) : SingleBusRig(true, milliseconds(1))
-  {
+  explicit FdRig(std::uint8_t mode) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
     board_a = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 2, 7);
@@ -86,8 +82,7 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
 };
 
 struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
-  FtRig() : SingleBusRig(false, milliseconds(1))
-  {
+  FtRig() : SingleBusRig(false, milliseconds(1)) {
     sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.add_node(SimNodeConfig{}), 0x30, false);
     FtConfig c;
     c.produce_sync = true;
@@ -101,9 +96,9 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
 
 }  // namespace
 
-TEST_CASE("drivers: device interface: the arm through JointDevice sends the frames of set_position/set_torque",
-          "[drivers][device]")
-{
+TEST_CASE(
+    "drivers: device interface: the arm through JointDevice sends the frames of set_position/set_torque",
+    "[drivers][device]") {
   drvtest::ArmRig named = make_arm();
   drvtest::ArmRig face = make_arm();
   REQUIRE(named.arm != nullptr);
@@ -181,8 +176,7 @@ TEST_CASE("drivers: device interface: the arm through JointDevice sends the fram
 }
 
 TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the frames of set_command",
-          "[drivers][device][hand]")
-{
+          "[drivers][device][hand]") {
   MitRig named;
   MitRig face;
   REQUIRE(named.driver != nullptr);
@@ -268,9 +262,9 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
 }
 
 TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over every board in order",
-          "[drivers][device][hand]")
-{
-  for (const std::uint8_t mode : {std::uint8_t{MRQP_FW_HAND_MODE_POSITION}, std::uint8_t{MRQP_FW_HAND_MODE_TORQUE}}) {
+          "[drivers][device][hand]") {
+  for (const std::uint8_t mode :
+       {std::uint8_t{MRQP_FW_HAND_MODE_POSITION}, std::uint8_t{MRQP_FW_HAND_MODE_TORQUE}}) {
     FdRig named(mode);
     FdRig face(mode);
     REQUIRE(named.driver != nullptr);
@@ -338,8 +332,7 @@ TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over e
   }
 }
 
-TEST_CASE("drivers: device interface: the F/T driver through WrenchDevice", "[drivers][device][ft]")
-{
+TEST_CASE("drivers: device interface: the F/T driver through WrenchDevice", "[drivers][device][ft]") {
   FtRig named;
   FtRig face;
   REQUIRE(named.driver != nullptr);

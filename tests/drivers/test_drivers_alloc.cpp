@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "fake_cia402_drive.hpp"
 #include "emulated_node.hpp"
+#include "fake_cia402_drive.hpp"
 #include "fake_devices.hpp"
 
 extern "C" void* __libc_malloc(std::size_t);
@@ -29,29 +29,22 @@ std::atomic<long> g_count{0};
 }
 
 // Counting replacements of the C allocator, forwarding to glibc's own implementation.
-extern "C" void* malloc(std::size_t n)
-{
+extern "C" void* malloc(std::size_t n) {
   g_count.fetch_add(1, std::memory_order_relaxed);
   return __libc_malloc(n);
 }
-extern "C" void* calloc(std::size_t n, std::size_t size)
-{
+extern "C" void* calloc(std::size_t n, std::size_t size) {
   g_count.fetch_add(1, std::memory_order_relaxed);
   return __libc_calloc(n, size);
 }
-extern "C" void* realloc(void* p, std::size_t n)
-{
+extern "C" void* realloc(void* p, std::size_t n) {
   g_count.fetch_add(1, std::memory_order_relaxed);
   return __libc_realloc(p, n);
 }
-extern "C" void free(void* p)
-{
-  __libc_free(p);
-}
+extern "C" void free(void* p) { __libc_free(p); }
 
 // ... and of the C++ allocation functions.
-void* operator new(std::size_t n)
-{
+void* operator new(std::size_t n) {
   g_count.fetch_add(1, std::memory_order_relaxed);
   void* p = __libc_malloc(n == 0 ? 1 : n);
   if (p == nullptr) {
@@ -59,12 +52,8 @@ void* operator new(std::size_t n)
   }
   return p;
 }
-void* operator new[](std::size_t n)
-{
-  return ::operator new(n);
-}
-void* operator new(std::size_t n, std::align_val_t a)
-{
+void* operator new[](std::size_t n) { return ::operator new(n); }
+void* operator new(std::size_t n, std::align_val_t a) {
   g_count.fetch_add(1, std::memory_order_relaxed);
   void* p = __libc_memalign(static_cast<std::size_t>(a), n == 0 ? 1 : n);
   if (p == nullptr) {
@@ -72,47 +61,19 @@ void* operator new(std::size_t n, std::align_val_t a)
   }
   return p;
 }
-void* operator new[](std::size_t n, std::align_val_t a)
-{
-  return ::operator new(n, a);
-}
-void operator delete(void* p) noexcept
-{
-  __libc_free(p);
-}
-void operator delete[](void* p) noexcept
-{
-  __libc_free(p);
-}
-void operator delete(void* p, std::size_t) noexcept
-{
-  __libc_free(p);
-}
-void operator delete[](void* p, std::size_t) noexcept
-{
-  __libc_free(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept
-{
-  __libc_free(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept
-{
-  __libc_free(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept
-{
-  __libc_free(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept
-{
-  __libc_free(p);
-}
+void* operator new[](std::size_t n, std::align_val_t a) { return ::operator new(n, a); }
+void operator delete(void* p) noexcept { __libc_free(p); }
+void operator delete[](void* p) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::size_t) noexcept { __libc_free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { __libc_free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { __libc_free(p); }
 
 using namespace mrqp::drivers;
 
-TEST_CASE("drivers: the counting allocator is in effect", "[drivers][realtime]")
-{
+TEST_CASE("drivers: the counting allocator is in effect", "[drivers][realtime]") {
   const long before = g_count.load();
   auto p = std::make_unique<int>(3);
   void* q = std::malloc(8);
@@ -120,8 +81,7 @@ TEST_CASE("drivers: the counting allocator is in effect", "[drivers][realtime]")
   CHECK(g_count.load() - before == 2);
 }
 
-TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[drivers][realtime]")
-{
+TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[drivers][realtime]") {
   const TimeNs period = milliseconds(4);  // 250 Hz: 7 drives + a sensor fit one classic bus
 
   // Arm bus: 7 drives (CSP), a classic force/torque sensor.
@@ -307,8 +267,8 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   CHECK(drives[3]->position() != 0);
 }
 
-TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in the cycle", "[drivers][realtime]")
-{
+TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in the cycle",
+          "[drivers][realtime]") {
   using mrqp::emulation::EmulatedFtSensor;
   using mrqp::emulation::EmulatedHandBoard;
   using mrqp::emulation::EmulatedImu;

@@ -31,8 +31,7 @@ using mrqp::emulation::EmulatedMitMotor;
 namespace {
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
-  explicit MitRig(bool emulated) : SingleBusRig(false, milliseconds(1))
-  {
+  explicit MitRig(bool emulated) : SingleBusRig(false, milliseconds(1)) {
     SimNode& n = *bus.add_node(SimNodeConfig{});
     MitHandConfig c;
     if (emulated) {
@@ -63,8 +62,7 @@ struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
   std::vector<std::unique_ptr<EmulatedMitMotor>> motors;
 };
 
-void mit_program(MitRig& r, int k)
-{
+void mit_program(MitRig& r, int k) {
   if (k == 2) {
     r.driver->request_enable(r.t);
   }
@@ -79,8 +77,7 @@ void mit_program(MitRig& r, int k)
 }
 
 struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
-  explicit FdRig(bool emulated) : SingleBusRig(true, milliseconds(1))
-  {
+  explicit FdRig(bool emulated) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
     SimNode& n = *bus.add_node(bcfg);
@@ -108,8 +105,7 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
   std::unique_ptr<EmulatedHandBoard> board;
 };
 
-void fd_program(FdRig& r, int k)
-{
+void fd_program(FdRig& r, int k) {
   if (k == 2) {
     r.driver->request_enable(r.t);
   }
@@ -121,8 +117,7 @@ void fd_program(FdRig& r, int k)
 }
 
 struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
-  FtRig(bool emulated, bool fd) : SingleBusRig(fd, milliseconds(1))
-  {
+  FtRig(bool emulated, bool fd) : SingleBusRig(fd, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = fd;
     SimNode& n = *bus.add_node(nc);
@@ -134,7 +129,8 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
       EmulatedFtSensor::Options o;
       o.node = 0x30;
       o.fd = fd;
-      o.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
+      o.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT
+                   : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
       sensor = std::make_unique<EmulatedFtSensor>(*host, o);
       node->add(*sensor);
     } else {
@@ -146,7 +142,8 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
     FtSensorConfig s;
     s.node = 0x30;
     s.variant = fd ? FtVariant::Fd : FtVariant::Classic;
-    s.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
+    s.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT
+                 : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
     c.sensors.push_back(s);
     driver = FtSensorDriver::create({router.get()}, c, &error);
     if (driver) {
@@ -160,8 +157,7 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
 };
 
 struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
-  explicit ImuRig(bool emulated, TimeNs align_until = 0) : SingleBusRig(true, milliseconds(1))
-  {
+  explicit ImuRig(bool emulated, TimeNs align_until = 0) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = true;
     SimNode& n = *bus.add_node(nc);
@@ -205,16 +201,14 @@ struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
 };
 
 template <class Rig>
-std::vector<std::string> wire(Rig& r)
-{
+std::vector<std::string> wire(Rig& r) {
   r.bus.advance_to(r.t);
   return r.log.frames();
 }
 
 /// Cycles until `flag` is reported (at most `max` cycles); the number of cycles, or -1.
 template <class Rig>
-int cycles_until(Rig& r, std::uint32_t flag, int max = 20)
-{
+int cycles_until(Rig& r, std::uint32_t flag, int max = 20) {
   for (int k = 1; k <= max; ++k) {
     if (r.cycle().has(flag)) {
       return k;
@@ -226,8 +220,7 @@ int cycles_until(Rig& r, std::uint32_t flag, int max = 20)
 }  // namespace
 
 TEST_CASE("emulation: MIT motors put the frames of the fake on the wire and servo as commanded",
-          "[drivers][emulation][hand]")
-{
+          "[drivers][emulation][hand]") {
   MitRig fake(false);
   MitRig emu(true);
   REQUIRE(fake.driver != nullptr);
@@ -256,8 +249,7 @@ TEST_CASE("emulation: MIT motors put the frames of the fake on the wire and serv
   CHECK(emu.driver->faults().flags == 0u);
 }
 
-TEST_CASE("emulation: MIT motor fault switches", "[drivers][emulation][hand]")
-{
+TEST_CASE("emulation: MIT motor fault switches", "[drivers][emulation][hand]") {
   MitRig r(true);
   REQUIRE(r.driver != nullptr);
   for (int k = 0; k < 5; ++k) {
@@ -291,8 +283,7 @@ TEST_CASE("emulation: MIT motor fault switches", "[drivers][emulation][hand]")
   CHECK(r.driver->motor(0).position == Approx(1.0).margin(1e-3));
 }
 
-TEST_CASE("emulation: the hand board puts the frames of the fake on the wire", "[drivers][emulation][hand]")
-{
+TEST_CASE("emulation: the hand board puts the frames of the fake on the wire", "[drivers][emulation][hand]") {
   FdRig fake(false);
   FdRig emu(true);
   REQUIRE(fake.driver != nullptr);
@@ -316,8 +307,8 @@ TEST_CASE("emulation: the hand board puts the frames of the fake on the wire", "
   CHECK(s.torque == Approx(0.5 * std::sin(2.0 * (2.9 + 2.1))).margin(0.5e-3));
 }
 
-TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout", "[drivers][emulation][hand]")
-{
+TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout",
+          "[drivers][emulation][hand]") {
   FdRig r(true);
   REQUIRE(r.driver != nullptr);
   r.hook = [](FdRig& rr) {
@@ -391,8 +382,8 @@ TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout", 
   CHECK(b.next_event() == EmulatedHandBoard::kNever);
 }
 
-TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, faults", "[drivers][emulation][ft]")
-{
+TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, faults",
+          "[drivers][emulation][ft]") {
   for (const bool fd : {false, true}) {
     FtRig fake(false, fd);
     FtRig emu(true, fd);
@@ -437,8 +428,8 @@ TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, fa
   }
 }
 
-TEST_CASE("emulation: the IMU puts the frames of the fake on the wire, aligning and faults", "[drivers][emulation][imu]")
-{
+TEST_CASE("emulation: the IMU puts the frames of the fake on the wire, aligning and faults",
+          "[drivers][emulation][imu]") {
   ImuRig fake(false);
   ImuRig emu(true);
   REQUIRE(fake.driver != nullptr);
@@ -479,8 +470,7 @@ TEST_CASE("emulation: the IMU puts the frames of the fake on the wire, aligning 
   CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
 }
 
-TEST_CASE("emulation: CiA 402 drive fault switches: corrupt TPDOs, silence", "[drivers][emulation][arm]")
-{
+TEST_CASE("emulation: CiA 402 drive fault switches: corrupt TPDOs, silence", "[drivers][emulation][arm]") {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   drvtest::ArmRig r({{0, 1}, {0, 2}}, c);

@@ -19,8 +19,7 @@ using drvtest::WireLog;
 namespace {
 
 struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
-  explicit FtRig(bool fd) : SingleBusRig(fd, milliseconds(1))
-  {
+  explicit FtRig(bool fd) : SingleBusRig(fd, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = fd;
     nc.name = "master";
@@ -31,7 +30,8 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
     FtSensorConfig s;
     s.node = 0x30;
     s.variant = fd ? FtVariant::Fd : FtVariant::Classic;
-    s.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
+    s.scale = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT
+                 : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
     s.force_limit = 100.0;
     c.sensors.push_back(s);
     FtSensorConfig ghost = s;  // a second sensor played by the injector
@@ -46,20 +46,20 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
 };
 
 // Classic frames of sensor 0x31, hand-encoded: three i16 LE values, seq, status.
-mrqp_fw_frame half(unsigned cob, std::int16_t a, std::int16_t b, std::int16_t c, std::uint8_t seq, std::uint8_t status)
-{
+mrqp_fw_frame half(unsigned cob, std::int16_t a, std::int16_t b, std::int16_t c, std::uint8_t seq,
+                   std::uint8_t status) {
   const auto ua = static_cast<std::uint16_t>(a);
   const auto ub = static_cast<std::uint16_t>(b);
   const auto uc = static_cast<std::uint16_t>(c);
-  return make_frame(cob + 0x31, {static_cast<std::uint8_t>(ua & 0xFF), static_cast<std::uint8_t>(ua >> 8),
-                                 static_cast<std::uint8_t>(ub & 0xFF), static_cast<std::uint8_t>(ub >> 8),
-                                 static_cast<std::uint8_t>(uc & 0xFF), static_cast<std::uint8_t>(uc >> 8), seq, status});
+  return make_frame(cob + 0x31,
+                    {static_cast<std::uint8_t>(ua & 0xFF), static_cast<std::uint8_t>(ua >> 8),
+                     static_cast<std::uint8_t>(ub & 0xFF), static_cast<std::uint8_t>(ub >> 8),
+                     static_cast<std::uint8_t>(uc & 0xFF), static_cast<std::uint8_t>(uc >> 8), seq, status});
 }
 
 }  // namespace
 
-TEST_CASE("drivers: F/T classic: SYNC, the pair joined into one sample", "[drivers][ft]")
-{
+TEST_CASE("drivers: F/T classic: SYNC, the pair joined into one sample", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
   rig.sensor->set_wrench({1.5, -2.25, 10.0, 0.125, -0.5, 0.001});
@@ -84,8 +84,7 @@ TEST_CASE("drivers: F/T classic: SYNC, the pair joined into one sample", "[drive
   CHECK(frames[2] == "2B0#7D000CFE01000100");
 }
 
-TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", "[drivers][ft]")
-{
+TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
@@ -103,8 +102,10 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   const FaultReport& r2 = rig.cycle();
   CHECK(r2.devices[1].torn_pairs == 2u);
   // A matching pair (seq 7, same status) makes a sample.
-  REQUIRE(rig.injector->send_at(half(0x180, 50, -100, 0, 7, 0), rig.last + microseconds(500)) == SendResult::Ok);
-  REQUIRE(rig.injector->send_at(half(0x280, 1000, 0, -1000, 7, 0), rig.last + microseconds(500)) == SendResult::Ok);
+  REQUIRE(rig.injector->send_at(half(0x180, 50, -100, 0, 7, 0), rig.last + microseconds(500)) ==
+          SendResult::Ok);
+  REQUIRE(rig.injector->send_at(half(0x280, 1000, 0, -1000, 7, 0), rig.last + microseconds(500)) ==
+          SendResult::Ok);
   rig.cycle();
   const FtSensorState& s = rig.driver->sensor(1);
   REQUIRE(s.valid);
@@ -115,8 +116,8 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   CHECK(s.wrench[5] == Approx(-1.0));
   // Same seq, different status: torn as well.
   REQUIRE(rig.injector->send_at(half(0x180, 0, 0, 0, 8, 0), rig.last + microseconds(500)) == SendResult::Ok);
-  REQUIRE(rig.injector->send_at(half(0x280, 0, 0, 0, 8, MRQP_FW_FT_STATUS_OVERRANGE), rig.last + microseconds(500)) ==
-          SendResult::Ok);
+  REQUIRE(rig.injector->send_at(half(0x280, 0, 0, 0, 8, MRQP_FW_FT_STATUS_OVERRANGE),
+                                rig.last + microseconds(500)) == SendResult::Ok);
   CHECK(rig.cycle().devices[1].torn_pairs == 3u);
   CHECK(rig.driver->sensor(1).seq == 7u);
 
@@ -129,8 +130,7 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   CHECK((r3.devices[0].flags & fault::kTornPair) != 0u);
 }
 
-TEST_CASE("drivers: F/T: sequence gaps, missing samples, status and range", "[drivers][ft]")
-{
+TEST_CASE("drivers: F/T: sequence gaps, missing samples, status and range", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
   for (int k = 0; k < 3; ++k) {
@@ -150,12 +150,12 @@ TEST_CASE("drivers: F/T: sequence gaps, missing samples, status and range", "[dr
   rig.sensor->set_status_extra(MRQP_FW_FT_STATUS_FAULT);
   rig.cycle();
   const FaultReport& r2 = rig.cycle();
-  CHECK((r2.devices[0].flags & (fault::kOutOfRange | fault::kDeviceFault)) == (fault::kOutOfRange | fault::kDeviceFault));
+  CHECK((r2.devices[0].flags & (fault::kOutOfRange | fault::kDeviceFault)) ==
+        (fault::kOutOfRange | fault::kDeviceFault));
   CHECK((r2.devices[0].flags & fault::kFeedbackMissing) == 0u);
 }
 
-TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit", "[drivers][ft]")
-{
+TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
   rig.sensor->set_wrench({3.0, 0, 0, 0, 0, 0.5});
@@ -163,7 +163,10 @@ TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit"
   rig.cycle();
   CHECK(rig.driver->sensor(0).wrench[0] == Approx(3.0));
   const TimeNs t0 = rig.t;
-  rig.hook = [](FtRig& r) { CHECK(r.driver->request_tare(0, true, r.t)); r.hook = nullptr; };
+  rig.hook = [](FtRig& r) {
+    CHECK(r.driver->request_tare(0, true, r.t));
+    r.hook = nullptr;
+  };
   rig.cycle();
   CHECK(rig.driver->tare_pending(0));
   rig.cycle();
@@ -180,7 +183,10 @@ TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit"
   CHECK(master[1] == "080#");
   CHECK(rig.driver->faults().devices[0].flags == 0u);
   // A tare the sensor never confirms times out (100 ms).
-  rig.hook = [](FtRig& r) { CHECK(r.driver->request_tare(1, true, r.t)); r.hook = nullptr; };
+  rig.hook = [](FtRig& r) {
+    CHECK(r.driver->request_tare(1, true, r.t));
+    r.hook = nullptr;
+  };
   bool timeout = false;
   for (int k = 0; k < 110 && !timeout; ++k) {
     timeout = (rig.cycle().devices[1].flags & fault::kTimeout) != 0u;
@@ -188,8 +194,7 @@ TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit"
   CHECK(timeout);
 }
 
-TEST_CASE("drivers: F/T FD frame: decoded, corrupted frames dropped", "[drivers][ft]")
-{
+TEST_CASE("drivers: F/T FD frame: decoded, corrupted frames dropped", "[drivers][ft]") {
   FtRig rig(true);
   REQUIRE(rig.driver != nullptr);
   rig.sensor->set_wrench({12.345678, -0.000001, 3.0, 0.25, -0.125, 7.0});

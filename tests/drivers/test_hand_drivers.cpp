@@ -20,8 +20,7 @@ using drvtest::WireLog;
 namespace {
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
-  explicit MitRig(TimeNs cycle_period = milliseconds(2)) : SingleBusRig(false, cycle_period)
-  {
+  explicit MitRig(TimeNs cycle_period = milliseconds(2)) : SingleBusRig(false, cycle_period) {
     motors = std::make_unique<drvtest::FakeMitMotors>(*bus.add_node(SimNodeConfig{}));
     injector = bus.add_node(SimNodeConfig{});
     MitHandConfig c;
@@ -38,8 +37,8 @@ struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
 
 }  // namespace
 
-TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedance commands", "[drivers][hand]")
-{
+TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedance commands",
+          "[drivers][hand]") {
   MitRig rig;
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
@@ -56,7 +55,10 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   CHECK(rig.driver->faults().flags == 0u);
 
   TimeNs t0 = rig.t;
-  rig.hook = [](MitRig& r) { r.driver->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](MitRig& r) {
+    r.driver->request_enable(r.t);
+    r.hook = nullptr;
+  };
   rig.cycle();
   CHECK(rig.driver->motor(0).mode == MitMode::Enabling);
   rig.cycle();
@@ -102,7 +104,10 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
 
   // Disable: exit motor mode until answered.
   t0 = rig.t;
-  rig.hook = [](MitRig& r) { r.driver->request_disable(r.t); r.hook = nullptr; };
+  rig.hook = [](MitRig& r) {
+    r.driver->request_disable(r.t);
+    r.hook = nullptr;
+  };
   rig.cycle();
   rig.cycle();
   CHECK(rig.driver->all_off());
@@ -111,8 +116,7 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   CHECK(rig.master_frames(t0)[1] == "002#FFFFFFFFFFFFFFFD");
 }
 
-TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "[drivers][hand]")
-{
+TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "[drivers][hand]") {
   MitRig rig;
   REQUIRE(rig.driver != nullptr);
   for (int k = 0; k < 3; ++k) {
@@ -130,8 +134,10 @@ TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "
 
   // Injected at a quiet moment of the cycle (replies use identifier 0x000 too).
   const TimeNs quiet = rig.last + microseconds(1200);
-  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x01, 0x80, 0x00, 0x80}), quiet) == SendResult::Ok);  // DLC 4
-  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x05, 0x80, 0x00, 0x80, 0x08, 0x00}), quiet) == SendResult::Ok);
+  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x01, 0x80, 0x00, 0x80}), quiet) ==
+          SendResult::Ok);  // DLC 4
+  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x05, 0x80, 0x00, 0x80, 0x08, 0x00}), quiet) ==
+          SendResult::Ok);
   REQUIRE(rig.injector->send_at(make_frame(0x000, {}), quiet) == SendResult::Ok);
   REQUIRE(rig.injector->send_at(make_frame(0x055, {1}), quiet) == SendResult::Ok);
   const FaultReport& r2 = rig.cycle();
@@ -156,8 +162,7 @@ TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "
 namespace {
 
 struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
-  FdRig() : SingleBusRig(true, milliseconds(1))
-  {
+  FdRig() : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
     board = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 2, 20);
@@ -174,8 +179,7 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
 
 }  // namespace
 
-TEST_CASE("drivers: FD hand board: two 64-byte frames each way per cycle for 20 joints", "[drivers][hand]")
-{
+TEST_CASE("drivers: FD hand board: two 64-byte frames each way per cycle for 20 joints", "[drivers][hand]") {
   FdRig rig;
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
@@ -214,12 +218,14 @@ TEST_CASE("drivers: FD hand board: two 64-byte frames each way per cycle for 20 
   CHECK(rig.driver->faults().flags == 0u);
 }
 
-TEST_CASE("drivers: FD hand board: enable, setpoints, NaN refused, limits", "[drivers][hand]")
-{
+TEST_CASE("drivers: FD hand board: enable, setpoints, NaN refused, limits", "[drivers][hand]") {
   FdRig rig;
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
-  rig.hook = [](FdRig& r) { r.driver->request_enable(r.t); r.hook = nullptr; };
+  rig.hook = [](FdRig& r) {
+    r.driver->request_enable(r.t);
+    r.hook = nullptr;
+  };
   rig.cycle();
   rig.cycle();
   CHECK(rig.driver->all_enabled());
@@ -244,12 +250,12 @@ TEST_CASE("drivers: FD hand board: enable, setpoints, NaN refused, limits", "[dr
   const FaultReport& r = rig.cycle();
   CHECK((r.devices[0].flags & (fault::kSetpointRefused | fault::kSetpointLimited)) ==
         (fault::kSetpointRefused | fault::kSetpointLimited));
-  CHECK(rig.board->position(5) == Approx(0.25f).margin(5e-5));   // NaN never sent
+  CHECK(rig.board->position(5) == Approx(0.25f).margin(5e-5));    // NaN never sent
   CHECK(rig.board->position(6) == Approx(3.2767f).margin(5e-5));  // clamped to the wire range
 }
 
-TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, board faults", "[drivers][hand]")
-{
+TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, board faults",
+          "[drivers][hand]") {
   FdRig rig;
   REQUIRE(rig.driver != nullptr);
   for (int k = 0; k < 3; ++k) {
@@ -284,7 +290,7 @@ TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, 
 
   // A board that stops applying commands: its sequence echo lags behind.
   rig.board->set_frozen(true);
-  rig.cycle();                                      // lag 1
+  rig.cycle();                                     // lag 1
   CHECK(!rig.cycle().has(fault::kStateMismatch));  // lag 2 = max_seq_lag
   CHECK((rig.cycle().devices[0].flags & fault::kStateMismatch) != 0u);
   rig.board->set_frozen(false);
@@ -299,8 +305,7 @@ TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, 
         (fault::kDeviceFault | fault::kDeviceWarning));
 }
 
-TEST_CASE("drivers: FD hand driver refuses a classic bus", "[drivers][hand]")
-{
+TEST_CASE("drivers: FD hand driver refuses a classic bus", "[drivers][hand]") {
   SimBus classic;
   SimNodeConfig mc;
   mc.fd = true;

@@ -19,8 +19,7 @@ using drvtest::make_frame;
 namespace {
 
 struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
-  ImuRig() : SingleBusRig(true, milliseconds(1))
-  {
+  ImuRig() : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = true;
     imu = std::make_unique<drvtest::FakeImu>(*bus.add_node(nc), 0x40);
@@ -41,8 +40,7 @@ struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
 
 }  // namespace
 
-TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[drivers][imu]")
-{
+TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[drivers][imu]") {
   ImuRig rig;
   REQUIRE(rig.driver != nullptr);
   ImuDevice& dev = *rig.driver;
@@ -88,8 +86,7 @@ TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[dr
   CHECK(budget.lines()[1].len == 24u);
 }
 
-TEST_CASE("drivers: IMU: aligning, stale, fault, over-range and lost samples", "[drivers][imu]")
-{
+TEST_CASE("drivers: IMU: aligning, stale, fault, over-range and lost samples", "[drivers][imu]") {
   ImuRig rig;
   REQUIRE(rig.driver != nullptr);
   mrqp_fw_imu_sample& s = rig.imu->sample();
@@ -160,8 +157,7 @@ TEST_CASE("drivers: IMU: aligning, stale, fault, over-range and lost samples", "
   CHECK_FALSE(rig.driver->imu(0).fresh);
 }
 
-TEST_CASE("drivers: IMU: corrupt frames are counted and dropped", "[drivers][imu]")
-{
+TEST_CASE("drivers: IMU: corrupt frames are counted and dropped", "[drivers][imu]") {
   ImuRig rig;
   REQUIRE(rig.driver != nullptr);
   rig.imu->sample().angular_velocity[0] = 1.0;
@@ -199,8 +195,7 @@ TEST_CASE("drivers: IMU: corrupt frames are counted and dropped", "[drivers][imu
   CHECK(rig.cycle().flags == 0u);
 }
 
-TEST_CASE("drivers: IMU: set-up errors name the IMU and the field", "[drivers][imu]")
-{
+TEST_CASE("drivers: IMU: set-up errors name the IMU and the field", "[drivers][imu]") {
   SimBus classic;
   SimNode* m = classic.add_node(SimNodeConfig{});
   BusRouter router(*m);

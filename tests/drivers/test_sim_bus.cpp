@@ -12,8 +12,7 @@ using drvtest::WireLog;
 
 namespace {
 
-mrqp_fw_frame classic(std::uint32_t id, unsigned len)
-{
+mrqp_fw_frame classic(std::uint32_t id, unsigned len) {
   mrqp_fw_frame f{};
   f.id = id;
   f.len = static_cast<std::uint8_t>(len);
@@ -23,8 +22,7 @@ mrqp_fw_frame classic(std::uint32_t id, unsigned len)
   return f;
 }
 
-mrqp_fw_frame fd(std::uint32_t id, unsigned len, bool brs = true)
-{
+mrqp_fw_frame fd(std::uint32_t id, unsigned len, bool brs = true) {
   mrqp_fw_frame f = classic(id, 0);
   f.len = static_cast<std::uint8_t>(len);
   f.flags = static_cast<std::uint8_t>(MRQP_FW_FRAME_FD | (brs ? MRQP_FW_FRAME_BRS : 0u));
@@ -32,8 +30,7 @@ mrqp_fw_frame fd(std::uint32_t id, unsigned len, bool brs = true)
 }
 
 struct Pair {
-  explicit Pair(SimBusConfig c = SimBusConfig{}) : bus(c)
-  {
+  explicit Pair(SimBusConfig c = SimBusConfig{}) : bus(c) {
     SimNodeConfig a;
     a.name = "a";
     a.fd = true;
@@ -52,8 +49,7 @@ struct Pair {
 
 }  // namespace
 
-TEST_CASE("drivers: classic frame durations equal the hand-computed bit counts", "[drivers][simbus]")
-{
+TEST_CASE("drivers: classic frame durations equal the hand-computed bit counts", "[drivers][simbus]") {
   // 47 + 8n bits; worst-case stuffing adds floor((34 + 8n - 1) / 4) stuff bits.
   const unsigned plain[9] = {47, 55, 63, 71, 79, 87, 95, 103, 111};
   const unsigned worst[9] = {55, 65, 75, 85, 95, 105, 115, 125, 135};
@@ -81,8 +77,8 @@ TEST_CASE("drivers: classic frame durations equal the hand-computed bit counts",
   CHECK(b.frame_time(classic(1, 8)) == microseconds(135));
 }
 
-TEST_CASE("drivers: CAN FD frame durations with bit-rate switch equal the hand-computed figures", "[drivers][simbus]")
-{
+TEST_CASE("drivers: CAN FD frame durations with bit-rate switch equal the hand-computed figures",
+          "[drivers][simbus]") {
   SimBusConfig c;
   c.nominal_bps = 1000000;
   c.data_bps = 5000000;
@@ -119,14 +115,13 @@ TEST_CASE("drivers: CAN FD frame durations with bit-rate switch equal the hand-c
   }
 }
 
-TEST_CASE("drivers: frames a bus or node cannot carry are refused", "[drivers][simbus]")
-{
+TEST_CASE("drivers: frames a bus or node cannot carry are refused", "[drivers][simbus]") {
   SimBus classic_bus;  // data_bps 0: a classic bus
   SimNodeConfig cfg;
   cfg.fd = true;
   SimNode* a = classic_bus.add_node(cfg);
   CHECK(a->send(fd(0x100, 64)) == SendResult::Invalid);
-  CHECK(a->send(classic(0x800, 1)) == SendResult::Invalid);            // not an 11-bit id
+  CHECK(a->send(classic(0x800, 1)) == SendResult::Invalid);  // not an 11-bit id
   CHECK(a->send(make_frame(0x100, {1}, MRQP_FW_FRAME_EXT)) == SendResult::Invalid);
   CHECK(a->send(make_frame(0x100, {1}, MRQP_FW_FRAME_RTR)) == SendResult::Invalid);
   mrqp_fw_frame nine = classic(0x100, 8);
@@ -141,8 +136,8 @@ TEST_CASE("drivers: frames a bus or node cannot carry are refused", "[drivers][s
   CHECK(!classic_only->fd_enabled());
 }
 
-TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in the same slot", "[drivers][simbus]")
-{
+TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in the same slot",
+          "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
   bus.set_tap(&log);
@@ -154,8 +149,8 @@ TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in 
   REQUIRE(n2->send(classic(0x100, 8)) == SendResult::Ok);
   REQUIRE(n3->send(classic(0x200, 8)) == SendResult::Ok);
   bus.advance(milliseconds(1));
-  REQUIRE(log.frames() == std::vector<std::string>{"100#1122334455667788", "200#1122334455667788",
-                                                     "300#1122334455667788"});
+  REQUIRE(log.frames() ==
+          std::vector<std::string>{"100#1122334455667788", "200#1122334455667788", "300#1122334455667788"});
   // Back to back: each 8-byte frame is 135 bit times with worst-case stuffing.
   CHECK(log.events[0].start == 0);
   CHECK(log.events[1].start == microseconds(135));
@@ -175,12 +170,12 @@ TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in 
   REQUIRE(n2->send(classic(0x400, 8)) == SendResult::Ok);
   REQUIRE(n3->send_at(classic(0x050, 8), t0 + microseconds(10)) == SendResult::Ok);
   bus.advance(milliseconds(1));
-  CHECK(log.frames() == std::vector<std::string>{"400#1122334455667788", "050#1122334455667788",
-                                                   "700#1122334455667788"});
+  CHECK(log.frames() ==
+        std::vector<std::string>{"400#1122334455667788", "050#1122334455667788", "700#1122334455667788"});
 }
 
-TEST_CASE("drivers: each node transmits its own queue in order, classic beats FD on equal identifiers", "[drivers][simbus]")
-{
+TEST_CASE("drivers: each node transmits its own queue in order, classic beats FD on equal identifiers",
+          "[drivers][simbus]") {
   SimBusConfig c;
   c.data_bps = 5000000;
   Pair p(c);
@@ -201,8 +196,7 @@ TEST_CASE("drivers: each node transmits its own queue in order, classic beats FD
 }
 
 TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive after 16, never bus-off",
-          "[drivers][simbus]")
-{
+          "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
   bus.set_tap(&log);
@@ -216,7 +210,9 @@ TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive 
     CHECK(log.events.back().outcome == WireOutcome::NoAck);
     CHECK(log.events.back().start == static_cast<TimeNs>(k - 1) * microseconds(141));
     CHECK(a->status().tec == 8 * k);
-    const BusState expected = k < 12 ? BusState::ErrorActive : k < 16 ? BusState::ErrorWarning : BusState::ErrorPassive;
+    const BusState expected = k < 12   ? BusState::ErrorActive
+                              : k < 16 ? BusState::ErrorWarning
+                                       : BusState::ErrorPassive;
     CHECK(a->status().state == expected);
   }
   // Error passive now: ISO 11898-1 exception 1 keeps the TEC at 128 on further ACK errors, and
@@ -263,8 +259,7 @@ TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive 
 }
 
 TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery after 128 x 11 recessive bits",
-          "[drivers][simbus]")
-{
+          "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
   bus.set_tap(&log);
@@ -281,9 +276,9 @@ TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery aft
   REQUIRE(log.events.size() == 32u);
   for (std::size_t k = 0; k < 32; ++k) {
     CHECK(log.events[k].outcome == WireOutcome::BitError);
-    const TimeNs start = k < 16 ? static_cast<TimeNs>(k) * microseconds(139)
-                                : 16 * microseconds(139) + microseconds(8) +
-                                      static_cast<TimeNs>(k - 16) * microseconds(147);
+    const TimeNs start =
+        k < 16 ? static_cast<TimeNs>(k) * microseconds(139)
+               : 16 * microseconds(139) + microseconds(8) + static_cast<TimeNs>(k - 16) * microseconds(147);
     CHECK(log.events[k].start == start);
   }
   const TimeNs off_at = log.events[31].end;
@@ -329,8 +324,8 @@ TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery aft
   CHECK(log2.frames() == std::vector<std::string>{"125#11"});
 }
 
-TEST_CASE("drivers: bus-off recovery counts the 11 recessive bits ending each frame of the others", "[drivers][simbus]")
-{
+TEST_CASE("drivers: bus-off recovery counts the 11 recessive bits ending each frame of the others",
+          "[drivers][simbus]") {
   SimBus bus;
   SimNode* a = bus.add_node(SimNodeConfig{});
   SimNode* b = bus.add_node(SimNodeConfig{});
@@ -353,8 +348,8 @@ TEST_CASE("drivers: bus-off recovery counts the 11 recessive bits ending each fr
   CHECK(a->status().state == BusState::ErrorActive);
 }
 
-TEST_CASE("drivers: identical identifiers with different data from two nodes destroy each other", "[drivers][simbus]")
-{
+TEST_CASE("drivers: identical identifiers with different data from two nodes destroy each other",
+          "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
   bus.set_tap(&log);
@@ -387,8 +382,8 @@ TEST_CASE("drivers: identical identifiers with different data from two nodes des
   CHECK(y->tx_pending() == 0u);
 }
 
-TEST_CASE("drivers: listen-only nodes and classic-only nodes (for FD frames) do not acknowledge", "[drivers][simbus]")
-{
+TEST_CASE("drivers: listen-only nodes and classic-only nodes (for FD frames) do not acknowledge",
+          "[drivers][simbus]") {
   SimBusConfig c;
   c.data_bps = 2000000;
   SimBus bus(c);
@@ -415,8 +410,8 @@ TEST_CASE("drivers: listen-only nodes and classic-only nodes (for FD frames) do 
   CHECK(m->status().rx_frames == 1u);  // a monitor still receives what others acknowledged
 }
 
-TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow is counted", "[drivers][simbus]")
-{
+TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow is counted",
+          "[drivers][simbus]") {
   SimBus bus;
   SimNodeConfig small;
   small.rx_queue = 4;
@@ -440,8 +435,7 @@ TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow 
   CHECK(f.frame.id == 0x200u);  // the oldest kept, the newest lost
 }
 
-TEST_CASE("drivers: a disconnected node neither sends, receives nor acknowledges", "[drivers][simbus]")
-{
+TEST_CASE("drivers: a disconnected node neither sends, receives nor acknowledges", "[drivers][simbus]") {
   SimBus bus;
   SimNode* a = bus.add_node(SimNodeConfig{});
   SimNode* b = bus.add_node(SimNodeConfig{});
@@ -456,12 +450,10 @@ TEST_CASE("drivers: a disconnected node neither sends, receives nor acknowledges
   CHECK(b->rx_pending() == 1u);
 }
 
-TEST_CASE("drivers: node timers fire at their time, also while the bus is busy", "[drivers][simbus]")
-{
+TEST_CASE("drivers: node timers fire at their time, also while the bus is busy", "[drivers][simbus]") {
   struct Timer final : SimListener {
     void on_receive(SimNode&, ReceiveResult, const RxFrame&) noexcept override {}
-    void on_timer(SimNode& n, TimeNs now) noexcept override
-    {
+    void on_timer(SimNode& n, TimeNs now) noexcept override {
       fired = now;
       (void)n.send(classic(0x010, 0));
     }

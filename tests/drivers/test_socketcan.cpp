@@ -14,8 +14,7 @@ using namespace mrqp::drivers;
 
 namespace {
 
-bool kernel_has_af_can()
-{
+bool kernel_has_af_can() {
   const int s = ::socket(PF_CAN, SOCK_RAW, 1 /* CAN_RAW */);
   if (s < 0) {
     return false;
@@ -26,15 +25,16 @@ bool kernel_has_af_can()
 
 }  // namespace
 
-TEST_CASE("drivers: SocketCAN: open() explains a kernel without AF_CAN", "[drivers][socketcan]")
-{
+TEST_CASE("drivers: SocketCAN: open() explains a kernel without AF_CAN", "[drivers][socketcan]") {
   SocketCanBus bus;
   SocketCanConfig cfg;
   cfg.interface = "vcan0";
   std::string err;
   const bool ok = bus.open(cfg, &err);
   if (kernel_has_af_can()) {
-    WARN("this kernel has AF_CAN: the no-AF_CAN message is not exercised here (see test_drivers_socketcan_vcan)");
+    WARN(
+        "this kernel has AF_CAN: the no-AF_CAN message is not exercised here (see "
+        "test_drivers_socketcan_vcan)");
     if (!ok) {
       CHECK_THAT(err, Catch::Matchers::Contains("vcan0"));  // e.g. no such interface
     }
@@ -47,8 +47,7 @@ TEST_CASE("drivers: SocketCAN: open() explains a kernel without AF_CAN", "[drive
   CHECK_THAT(err, Catch::Matchers::Contains("SimBus"));
 }
 
-TEST_CASE("drivers: SocketCAN: a closed bus refuses to send and receives nothing", "[drivers][socketcan]")
-{
+TEST_CASE("drivers: SocketCAN: a closed bus refuses to send and receives nothing", "[drivers][socketcan]") {
   SocketCanBus bus;
   mrqp_fw_frame f{};
   f.id = 0x123;

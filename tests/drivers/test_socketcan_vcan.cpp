@@ -24,8 +24,7 @@ namespace {
 
 const char* kInterface = "vcan0";
 
-bool receive_one(SocketCanBus& bus, RxFrame& rx, ReceiveResult want = ReceiveResult::Frame)
-{
+bool receive_one(SocketCanBus& bus, RxFrame& rx, ReceiveResult want = ReceiveResult::Frame) {
   for (int i = 0; i < 200; ++i) {
     const ReceiveResult r = bus.receive(rx);
     if (r == want) {
@@ -38,8 +37,7 @@ bool receive_one(SocketCanBus& bus, RxFrame& rx, ReceiveResult want = ReceiveRes
   return false;
 }
 
-mrqp_fw_frame classic(std::uint32_t id, std::uint8_t len)
-{
+mrqp_fw_frame classic(std::uint32_t id, std::uint8_t len) {
   mrqp_fw_frame f{};
   f.id = id;
   f.len = len;
@@ -51,8 +49,8 @@ mrqp_fw_frame classic(std::uint32_t id, std::uint8_t len)
 
 }  // namespace
 
-TEST_CASE("drivers: vcan: classic frames between two sockets, with kernel timestamps", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: classic frames between two sockets, with kernel timestamps",
+          "[drivers][socketcan][vcan]") {
   SocketCanBus a;
   SocketCanBus b;
   SocketCanConfig cfg;
@@ -80,8 +78,7 @@ TEST_CASE("drivers: vcan: classic frames between two sockets, with kernel timest
   CHECK(a.receive(own) == ReceiveResult::Empty);
 }
 
-TEST_CASE("drivers: vcan: ID filters", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: ID filters", "[drivers][socketcan][vcan]") {
   SocketCanBus tx;
   SocketCanBus rx;
   SocketCanConfig cfg;
@@ -99,8 +96,7 @@ TEST_CASE("drivers: vcan: ID filters", "[drivers][socketcan][vcan]")
   CHECK(rx.receive(f) == ReceiveResult::Empty);
 }
 
-TEST_CASE("drivers: vcan: CAN FD frames when enabled", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: CAN FD frames when enabled", "[drivers][socketcan][vcan]") {
   SocketCanBus a;
   SocketCanBus b;
   SocketCanConfig cfg;
@@ -130,8 +126,8 @@ TEST_CASE("drivers: vcan: CAN FD frames when enabled", "[drivers][socketcan][vca
   CHECK(c.send(f) == SendResult::Invalid);
 }
 
-TEST_CASE("drivers: vcan: a full send buffer is QueueFull, counted, never blocking", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: a full send buffer is QueueFull, counted, never blocking",
+          "[drivers][socketcan][vcan]") {
   SocketCanBus a;
   SocketCanConfig cfg;
   cfg.interface = kInterface;
@@ -149,11 +145,9 @@ TEST_CASE("drivers: vcan: a full send buffer is QueueFull, counted, never blocki
   CHECK(a.status().tx_queue_full == static_cast<std::uint64_t>(full));
 }
 
-TEST_CASE("drivers: vcan: the router drains a real socket", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: the router drains a real socket", "[drivers][socketcan][vcan]") {
   struct Count final : FrameHandler {
-    Claim on_frame(const BusRouter&, const RxFrame& rx, TimeNs) noexcept override
-    {
+    Claim on_frame(const BusRouter&, const RxFrame& rx, TimeNs) noexcept override {
       if (rx.frame.id == 0x081) {
         ++n;
         return Claim::Accepted;
@@ -185,20 +179,21 @@ namespace {
 
 // Runs before Catch's main: skip (exit 77) where SocketCAN or vcan0 is missing.
 struct SkipWithoutVcan {
-  SkipWithoutVcan()
-  {
+  SkipWithoutVcan() {
     const int s = ::socket(PF_CAN, SOCK_RAW, 1 /* CAN_RAW */);
     if (s < 0) {
-      std::printf("SKIP: AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): %s); "
-                  "run this test in the HIL VM or on a kernel with CAN and vcan\n",
-                  std::strerror(errno));
+      std::printf(
+          "SKIP: AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): %s); "
+          "run this test in the HIL VM or on a kernel with CAN and vcan\n",
+          std::strerror(errno));
       std::fflush(stdout);
       std::_Exit(77);
     }
     ::close(s);
     if (if_nametoindex(kInterface) == 0) {
-      std::printf("SKIP: no %s interface (modprobe vcan; ip link add dev %s type vcan; ip link set %s mtu 72 up)\n",
-                  kInterface, kInterface, kInterface);
+      std::printf(
+          "SKIP: no %s interface (modprobe vcan; ip link add dev %s type vcan; ip link set %s mtu 72 up)\n",
+          kInterface, kInterface, kInterface);
       std::fflush(stdout);
       std::_Exit(77);
     }
@@ -208,8 +203,8 @@ const SkipWithoutVcan skip_without_vcan;
 
 }  // namespace
 
-TEST_CASE("drivers: vcan: TX echo with receive_own, in wire order, marked own", "[drivers][socketcan][vcan]")
-{
+TEST_CASE("drivers: vcan: TX echo with receive_own, in wire order, marked own",
+          "[drivers][socketcan][vcan]") {
   SocketCanBus a;
   SocketCanBus b;
   SocketCanConfig ca;

@@ -3,8 +3,7 @@
 
 #include "c_usage.h"
 
-int mrqp_fw_c_enable_frame(uint8_t out[8], uint32_t *id)
-{
+int mrqp_fw_c_enable_frame(uint8_t out[8], uint32_t* id) {
   mrqp_fw_frame f;
   unsigned i;
   if (mrqp_fw_pack_failed(mrqp_fw_mit_pack_special(5u, MRQP_FW_MIT_KIND_ENABLE, &f))) {
@@ -17,8 +16,7 @@ int mrqp_fw_c_enable_frame(uint8_t out[8], uint32_t *id)
   return (int)f.len;
 }
 
-int mrqp_fw_c_emulated_drive_enable(void)
-{
+int mrqp_fw_c_emulated_drive_enable(void) {
   /* A drive powering up, a master enabling it over RPDO1/TPDO1 frames. */
   const mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
   mrqp_fw_cia402_state drive = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;

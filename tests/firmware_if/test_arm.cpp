@@ -12,8 +12,7 @@ namespace {
 const double kPi = 3.14159265358979323846;
 }
 
-TEST_CASE("default PDO mapping entries fill the PDO lengths exactly", "[firmware_if][arm]")
-{
+TEST_CASE("default PDO mapping entries fill the PDO lengths exactly", "[firmware_if][arm]") {
   std::uint32_t e[4] = {};
   REQUIRE(mrqp_fw_arm_pdo_mapping(MRQP_FW_ARM_RPDO1, e) == 3);
   CHECK(e[0] == 0x60400010u);
@@ -45,8 +44,7 @@ TEST_CASE("default PDO mapping entries fill the PDO lengths exactly", "[firmware
   }
 }
 
-TEST_CASE("arm PDOs, byte-exact", "[firmware_if][arm]")
-{
+TEST_CASE("arm PDOs, byte-exact", "[firmware_if][arm]") {
   mrqp_fw_frame f{};
   const mrqp_fw_arm_rpdo1 r{0x000F, 0x12345678, -2};
   REQUIRE(mrqp_fw_arm_pack_rpdo1(1, &r, &f) == MRQP_FW_PACK_OK);
@@ -65,8 +63,7 @@ TEST_CASE("arm PDOs, byte-exact", "[firmware_if][arm]")
   CHECK(payload(f) == Bytes{0x60, 0x79, 0xFE, 0xFF, 0x11, 0x86, 0x08});
 }
 
-TEST_CASE("arm PDOs round-trip at the integer limits and reject bad frames", "[firmware_if][arm]")
-{
+TEST_CASE("arm PDOs round-trip at the integer limits and reject bad frames", "[firmware_if][arm]") {
   mrqp_fw_frame f{};
   for (std::int32_t pos : {INT32_MIN, -1, 0, 1, INT32_MAX}) {
     for (std::int16_t tq : {static_cast<std::int16_t>(INT16_MIN), static_cast<std::int16_t>(0),
@@ -86,8 +83,8 @@ TEST_CASE("arm PDOs round-trip at the integer limits and reject bad frames", "[f
       CHECK(tt.position_actual == pos);
       CHECK(tt.torque_actual == tq);
     }
-    for (std::int8_t mode : {static_cast<std::int8_t>(-128), static_cast<std::int8_t>(10),
-                             static_cast<std::int8_t>(127)}) {
+    for (std::int8_t mode :
+         {static_cast<std::int8_t>(-128), static_cast<std::int8_t>(10), static_cast<std::int8_t>(127)}) {
       const mrqp_fw_arm_tpdo2 t{pos, 0xFFFF, mode};
       REQUIRE(mrqp_fw_arm_pack_tpdo2(1, &t, &f) == MRQP_FW_PACK_OK);
       mrqp_fw_arm_tpdo2 tt{};
@@ -120,8 +117,7 @@ TEST_CASE("arm PDOs round-trip at the integer limits and reject bad frames", "[f
   CHECK(mrqp_fw_arm_pack_tpdo1(1, nullptr, &f) == MRQP_FW_PACK_ERR_ARG);
 }
 
-TEST_CASE("arm scaling: position and velocity in increments", "[firmware_if][arm][scale]")
-{
+TEST_CASE("arm scaling: position and velocity in increments", "[firmware_if][arm][scale]") {
   const mrqp_fw_arm_scale s = MRQP_FW_ARM_SCALE_DEFAULT_INIT;  // 2^19 increments / rev
   std::int32_t inc = 0;
   CHECK(mrqp_fw_arm_position_to_inc(&s, kPi, &inc) == MRQP_FW_CONV_OK);
@@ -174,8 +170,7 @@ TEST_CASE("arm scaling: position and velocity in increments", "[firmware_if][arm
   CHECK(mrqp_fw_arm_position_to_inc(nullptr, 1.0, &inc) == MRQP_FW_CONV_BAD_SCALE);
 }
 
-TEST_CASE("arm scaling: torque in per mille of rated torque", "[firmware_if][arm][scale]")
-{
+TEST_CASE("arm scaling: torque in per mille of rated torque", "[firmware_if][arm][scale]") {
   const mrqp_fw_arm_scale s{524288u, 2500u};  // rated 2.5 N m
   std::int16_t pm = 0;
   CHECK(mrqp_fw_arm_torque_to_permille(&s, 2.5, &pm) == MRQP_FW_CONV_OK);
@@ -204,8 +199,7 @@ TEST_CASE("arm scaling: torque in per mille of rated torque", "[firmware_if][arm
   CHECK(mrqp_fw_arm_torque_from_permille(&bad, 1, &nm) == MRQP_FW_CONV_BAD_SCALE);
 }
 
-TEST_CASE("RPDO1 from SI: saturation flagged, NaN rejected", "[firmware_if][arm]")
-{
+TEST_CASE("RPDO1 from SI: saturation flagged, NaN rejected", "[firmware_if][arm]") {
   const mrqp_fw_arm_scale s = MRQP_FW_ARM_SCALE_DEFAULT_INIT;  // rated 1 N m
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_arm_pack_rpdo1_si(&s, 6, 0x000F, kPi, -0.5, &f) == MRQP_FW_PACK_OK);

@@ -3,8 +3,7 @@
 
 #include "c_usage.h"
 
-TEST_CASE("C99 user: MIT enable frame", "[firmware_if][c]")
-{
+TEST_CASE("C99 user: MIT enable frame", "[firmware_if][c]") {
   std::uint8_t b[8] = {};
   std::uint32_t id = 0;
   REQUIRE(mrqp_fw_c_enable_frame(b, &id) == 8);
@@ -15,8 +14,7 @@ TEST_CASE("C99 user: MIT enable frame", "[firmware_if][c]")
   }
 }
 
-TEST_CASE("C99 user: enabling an emulated drive through PDO frames", "[firmware_if][c]")
-{
+TEST_CASE("C99 user: enabling an emulated drive through PDO frames", "[firmware_if][c]") {
   // Switch on disabled -> (shutdown) -> ready -> (switch on) -> switched on -> (enable) -> enabled.
   CHECK(mrqp_fw_c_emulated_drive_enable() == 3);
 }

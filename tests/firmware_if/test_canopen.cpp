@@ -7,8 +7,7 @@
 
 using namespace fwtest;
 
-TEST_CASE("COB-IDs of the predefined connection set", "[firmware_if][canopen]")
-{
+TEST_CASE("COB-IDs of the predefined connection set", "[firmware_if][canopen]") {
   CHECK(mrqp_fw_cob_id(MRQP_FW_COB_KIND_NMT, 0) == 0x000u);
   CHECK(mrqp_fw_cob_id(MRQP_FW_COB_KIND_SYNC, 0) == 0x080u);
   struct Row {
@@ -16,10 +15,10 @@ TEST_CASE("COB-IDs of the predefined connection set", "[firmware_if][canopen]")
     std::uint32_t base;
   };
   const Row rows[] = {
-    {MRQP_FW_COB_KIND_EMCY, 0x080},  {MRQP_FW_COB_KIND_TPDO1, 0x180},     {MRQP_FW_COB_KIND_RPDO1, 0x200},
-    {MRQP_FW_COB_KIND_TPDO2, 0x280}, {MRQP_FW_COB_KIND_RPDO2, 0x300},     {MRQP_FW_COB_KIND_TPDO3, 0x380},
-    {MRQP_FW_COB_KIND_RPDO3, 0x400}, {MRQP_FW_COB_KIND_TPDO4, 0x480},     {MRQP_FW_COB_KIND_RPDO4, 0x500},
-    {MRQP_FW_COB_KIND_SDO_TX, 0x580}, {MRQP_FW_COB_KIND_SDO_RX, 0x600},   {MRQP_FW_COB_KIND_HEARTBEAT, 0x700},
+      {MRQP_FW_COB_KIND_EMCY, 0x080},   {MRQP_FW_COB_KIND_TPDO1, 0x180},  {MRQP_FW_COB_KIND_RPDO1, 0x200},
+      {MRQP_FW_COB_KIND_TPDO2, 0x280},  {MRQP_FW_COB_KIND_RPDO2, 0x300},  {MRQP_FW_COB_KIND_TPDO3, 0x380},
+      {MRQP_FW_COB_KIND_RPDO3, 0x400},  {MRQP_FW_COB_KIND_TPDO4, 0x480},  {MRQP_FW_COB_KIND_RPDO4, 0x500},
+      {MRQP_FW_COB_KIND_SDO_TX, 0x580}, {MRQP_FW_COB_KIND_SDO_RX, 0x600}, {MRQP_FW_COB_KIND_HEARTBEAT, 0x700},
   };
   for (const Row& r : rows) {
     for (unsigned node : {1u, 5u, 64u, 127u}) {
@@ -57,8 +56,7 @@ TEST_CASE("COB-IDs of the predefined connection set", "[firmware_if][canopen]")
   CHECK(mrqp_fw_cob_decode(0x780 + 3, nullptr) == MRQP_FW_COB_KIND_UNKNOWN);
 }
 
-TEST_CASE("NMT frames, byte-exact and validated", "[firmware_if][nmt]")
-{
+TEST_CASE("NMT frames, byte-exact and validated", "[firmware_if][nmt]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_nmt_pack(MRQP_FW_NMT_START, 5, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x000u);
@@ -103,8 +101,7 @@ TEST_CASE("NMT frames, byte-exact and validated", "[firmware_if][nmt]")
   CHECK_FALSE(mrqp_fw_nmt_addresses(8, 9));
 }
 
-TEST_CASE("NMT slave state machine (CiA 301 figure)", "[firmware_if][nmt]")
-{
+TEST_CASE("NMT slave state machine (CiA 301 figure)", "[firmware_if][nmt]") {
   using S = mrqp_fw_nmt_state;
   const S pre = MRQP_FW_NMT_STATE_PRE_OPERATIONAL;
   const S op = MRQP_FW_NMT_STATE_OPERATIONAL;
@@ -116,11 +113,13 @@ TEST_CASE("NMT slave state machine (CiA 301 figure)", "[firmware_if][nmt]")
     S to;
   };
   const Row table[] = {
-    {pre, MRQP_FW_NMT_START, op},        {pre, MRQP_FW_NMT_STOP, stop},      {pre, MRQP_FW_NMT_ENTER_PREOP, pre},
-    {op, MRQP_FW_NMT_STOP, stop},        {op, MRQP_FW_NMT_ENTER_PREOP, pre}, {op, MRQP_FW_NMT_START, op},
-    {stop, MRQP_FW_NMT_START, op},       {stop, MRQP_FW_NMT_ENTER_PREOP, pre}, {stop, MRQP_FW_NMT_STOP, stop},
-    {op, MRQP_FW_NMT_RESET_NODE, init},  {stop, MRQP_FW_NMT_RESET_COMM, init}, {pre, MRQP_FW_NMT_RESET_NODE, init},
-    {init, MRQP_FW_NMT_START, init},     {init, MRQP_FW_NMT_RESET_COMM, init},
+      {pre, MRQP_FW_NMT_START, op},         {pre, MRQP_FW_NMT_STOP, stop},
+      {pre, MRQP_FW_NMT_ENTER_PREOP, pre},  {op, MRQP_FW_NMT_STOP, stop},
+      {op, MRQP_FW_NMT_ENTER_PREOP, pre},   {op, MRQP_FW_NMT_START, op},
+      {stop, MRQP_FW_NMT_START, op},        {stop, MRQP_FW_NMT_ENTER_PREOP, pre},
+      {stop, MRQP_FW_NMT_STOP, stop},       {op, MRQP_FW_NMT_RESET_NODE, init},
+      {stop, MRQP_FW_NMT_RESET_COMM, init}, {pre, MRQP_FW_NMT_RESET_NODE, init},
+      {init, MRQP_FW_NMT_START, init},      {init, MRQP_FW_NMT_RESET_COMM, init},
   };
   for (const Row& r : table) {
     CHECK(mrqp_fw_nmt_next_state(r.from, r.cmd) == r.to);
@@ -129,8 +128,7 @@ TEST_CASE("NMT slave state machine (CiA 301 figure)", "[firmware_if][nmt]")
   CHECK(mrqp_fw_nmt_boot_complete(op) == op);
 }
 
-TEST_CASE("heartbeat and boot-up frames", "[firmware_if][nmt]")
-{
+TEST_CASE("heartbeat and boot-up frames", "[firmware_if][nmt]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_heartbeat_pack(0x12, MRQP_FW_NMT_STATE_OPERATIONAL, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x712u);
@@ -163,8 +161,7 @@ TEST_CASE("heartbeat and boot-up frames", "[firmware_if][nmt]")
   CHECK(mrqp_fw_heartbeat_unpack(&bad, &node, &st) == MRQP_FW_ERR_LENGTH);
 }
 
-TEST_CASE("SYNC with and without counter", "[firmware_if][sync]")
-{
+TEST_CASE("SYNC with and without counter", "[firmware_if][sync]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_sync_pack(0, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x080u);
@@ -195,8 +192,7 @@ TEST_CASE("SYNC with and without counter", "[firmware_if][sync]")
   CHECK(mrqp_fw_sync_counter_next(5, 1) == 0);
 }
 
-TEST_CASE("EMCY frames, byte-exact and validated", "[firmware_if][emcy]")
-{
+TEST_CASE("EMCY frames, byte-exact and validated", "[firmware_if][emcy]") {
   mrqp_fw_emcy e{};
   e.error_code = MRQP_FW_EMCY_CONTINUOUS_OVER_CURRENT;
   e.error_register = MRQP_FW_ERRREG_GENERIC | MRQP_FW_ERRREG_CURRENT;

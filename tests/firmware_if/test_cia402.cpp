@@ -30,14 +30,14 @@ struct Coding {
   std::uint16_t value;
 };
 const Coding coding[] = {
-  {NRTSO, 0x004F, 0x0000}, {SOD, 0x004F, 0x0040}, {RTSO, 0x006F, 0x0021}, {SO, 0x006F, 0x0023},
-  {OE, 0x006F, 0x0027},    {QSA, 0x006F, 0x0007}, {FRA, 0x004F, 0x000F},  {FLT, 0x004F, 0x0008},
+    {NRTSO, 0x004F, 0x0000}, {SOD, 0x004F, 0x0040}, {RTSO, 0x006F, 0x0021}, {SO, 0x006F, 0x0023},
+    {OE, 0x006F, 0x0027},    {QSA, 0x006F, 0x0007}, {FRA, 0x004F, 0x000F},  {FLT, 0x004F, 0x0008},
 };
 
 }  // namespace
 
-TEST_CASE("statusword decoding matches the standard's bit masks for all 65536 words", "[firmware_if][cia402]")
-{
+TEST_CASE("statusword decoding matches the standard's bit masks for all 65536 words",
+          "[firmware_if][cia402]") {
   for (std::uint32_t sw = 0; sw <= 0xFFFF; ++sw) {
     St expected = UNK;
     int matches = 0;
@@ -59,8 +59,7 @@ TEST_CASE("statusword decoding matches the standard's bit masks for all 65536 wo
   CHECK(mrqp_fw_cia402_decode_statusword(0x0218) == FLT);
 }
 
-TEST_CASE("drive-side statusword encodes each state and keeps the other bits", "[firmware_if][cia402]")
-{
+TEST_CASE("drive-side statusword encodes each state and keeps the other bits", "[firmware_if][cia402]") {
   for (St s : all_states) {
     CHECK(mrqp_fw_cia402_decode_statusword(mrqp_fw_cia402_statusword(s, 0)) == s);
     const std::uint16_t sw = mrqp_fw_cia402_statusword(s, 0xFFFF);
@@ -73,8 +72,7 @@ TEST_CASE("drive-side statusword encodes each state and keeps the other bits", "
   CHECK(std::string(mrqp_fw_cia402_state_str(UNK)) == "unknown");
 }
 
-TEST_CASE("controlword command decoding for all bit patterns 3..0", "[firmware_if][cia402]")
-{
+TEST_CASE("controlword command decoding for all bit patterns 3..0", "[firmware_if][cia402]") {
   // bits: eo qs ev so (3..0), from the device control command table.
   for (unsigned bits = 0; bits < 16; ++bits) {
     const bool so = (bits & 1u) != 0;
@@ -104,8 +102,7 @@ TEST_CASE("controlword command decoding for all bit patterns 3..0", "[firmware_i
   CHECK(mrqp_fw_cia402_controlword(MRQP_FW_CIA402_CMD_FAULT_RESET) == 0x0080);
 }
 
-TEST_CASE("drive transitions follow the CiA 402 state machine table", "[firmware_if][cia402]")
-{
+TEST_CASE("drive transitions follow the CiA 402 state machine table", "[firmware_if][cia402]") {
   // One row per (state, command) pair of the standard; commands given as several controlwords
   // that differ only in don't-care bits.
   struct Row {
@@ -115,29 +112,61 @@ TEST_CASE("drive transitions follow the CiA 402 state machine table", "[firmware
     unsigned transition;
   };
   const Row table[] = {
-    // Switch on disabled: only Shutdown leaves (2).
-    {SOD, 0x0006, RTSO, 2}, {SOD, 0x000E, RTSO, 2}, {SOD, 0x0007, SOD, 0}, {SOD, 0x000F, SOD, 0},
-    {SOD, 0x0000, SOD, 0},  {SOD, 0x0002, SOD, 0},
-    // Ready to switch on: Switch on (3), Switch on + enable operation (3+4), Disable voltage / Quick stop (7).
-    {RTSO, 0x0007, SO, 3}, {RTSO, 0x000F, OE, 34}, {RTSO, 0x0000, SOD, 7}, {RTSO, 0x0001, SOD, 7},
-    {RTSO, 0x0008, SOD, 7}, {RTSO, 0x0002, SOD, 7}, {RTSO, 0x000B, SOD, 7}, {RTSO, 0x0006, RTSO, 0},
-    // Switched on: Enable operation (4), Shutdown (6), Disable voltage / Quick stop (10).
-    {SO, 0x000F, OE, 4}, {SO, 0x0006, RTSO, 6}, {SO, 0x000E, RTSO, 6}, {SO, 0x0000, SOD, 10},
-    {SO, 0x0002, SOD, 10}, {SO, 0x0003, SOD, 10}, {SO, 0x0007, SO, 0},
-    // Operation enabled: Disable operation (5), Shutdown (8), Disable voltage (9), Quick stop (11).
-    {OE, 0x0007, SO, 5}, {OE, 0x0006, RTSO, 8}, {OE, 0x000E, RTSO, 8}, {OE, 0x0000, SOD, 9},
-    {OE, 0x0005, SOD, 9}, {OE, 0x000D, SOD, 9}, {OE, 0x0002, QSA, 11}, {OE, 0x000B, QSA, 11},
-    {OE, 0x000F, OE, 0}, {OE, 0x010F, OE, 0},  // halt bit is not a state command
-    // Quick stop active: Disable voltage (12), Enable operation (16); others stay.
-    {QSA, 0x0000, SOD, 12}, {QSA, 0x000F, OE, 16}, {QSA, 0x0002, QSA, 0}, {QSA, 0x0006, QSA, 0},
-    {QSA, 0x0007, QSA, 0},
-    // Not ready to switch on and Fault reaction active ignore the controlword.
-    {NRTSO, 0x0006, NRTSO, 0}, {NRTSO, 0x000F, NRTSO, 0}, {NRTSO, 0x0080, NRTSO, 0},
-    {FRA, 0x0080, FRA, 0}, {FRA, 0x0000, FRA, 0}, {FRA, 0x000F, FRA, 0},
-    // Fault: only the fault-reset edge (15); other commands are ignored.
-    {FLT, 0x0080, SOD, 15}, {FLT, 0x008F, SOD, 15}, {FLT, 0x000F, FLT, 0}, {FLT, 0x0006, FLT, 0},
-    {FLT, 0x0000, FLT, 0},
-    {UNK, 0x000F, UNK, 0},
+      // Switch on disabled: only Shutdown leaves (2).
+      {SOD, 0x0006, RTSO, 2},
+      {SOD, 0x000E, RTSO, 2},
+      {SOD, 0x0007, SOD, 0},
+      {SOD, 0x000F, SOD, 0},
+      {SOD, 0x0000, SOD, 0},
+      {SOD, 0x0002, SOD, 0},
+      // Ready to switch on: Switch on (3), Switch on + enable operation (3+4), Disable voltage / Quick stop (7).
+      {RTSO, 0x0007, SO, 3},
+      {RTSO, 0x000F, OE, 34},
+      {RTSO, 0x0000, SOD, 7},
+      {RTSO, 0x0001, SOD, 7},
+      {RTSO, 0x0008, SOD, 7},
+      {RTSO, 0x0002, SOD, 7},
+      {RTSO, 0x000B, SOD, 7},
+      {RTSO, 0x0006, RTSO, 0},
+      // Switched on: Enable operation (4), Shutdown (6), Disable voltage / Quick stop (10).
+      {SO, 0x000F, OE, 4},
+      {SO, 0x0006, RTSO, 6},
+      {SO, 0x000E, RTSO, 6},
+      {SO, 0x0000, SOD, 10},
+      {SO, 0x0002, SOD, 10},
+      {SO, 0x0003, SOD, 10},
+      {SO, 0x0007, SO, 0},
+      // Operation enabled: Disable operation (5), Shutdown (8), Disable voltage (9), Quick stop (11).
+      {OE, 0x0007, SO, 5},
+      {OE, 0x0006, RTSO, 8},
+      {OE, 0x000E, RTSO, 8},
+      {OE, 0x0000, SOD, 9},
+      {OE, 0x0005, SOD, 9},
+      {OE, 0x000D, SOD, 9},
+      {OE, 0x0002, QSA, 11},
+      {OE, 0x000B, QSA, 11},
+      {OE, 0x000F, OE, 0},
+      {OE, 0x010F, OE, 0},  // halt bit is not a state command
+      // Quick stop active: Disable voltage (12), Enable operation (16); others stay.
+      {QSA, 0x0000, SOD, 12},
+      {QSA, 0x000F, OE, 16},
+      {QSA, 0x0002, QSA, 0},
+      {QSA, 0x0006, QSA, 0},
+      {QSA, 0x0007, QSA, 0},
+      // Not ready to switch on and Fault reaction active ignore the controlword.
+      {NRTSO, 0x0006, NRTSO, 0},
+      {NRTSO, 0x000F, NRTSO, 0},
+      {NRTSO, 0x0080, NRTSO, 0},
+      {FRA, 0x0080, FRA, 0},
+      {FRA, 0x0000, FRA, 0},
+      {FRA, 0x000F, FRA, 0},
+      // Fault: only the fault-reset edge (15); other commands are ignored.
+      {FLT, 0x0080, SOD, 15},
+      {FLT, 0x008F, SOD, 15},
+      {FLT, 0x000F, FLT, 0},
+      {FLT, 0x0006, FLT, 0},
+      {FLT, 0x0000, FLT, 0},
+      {UNK, 0x000F, UNK, 0},
   };
   for (const Row& r : table) {
     unsigned t = 999;
@@ -148,8 +177,7 @@ TEST_CASE("drive transitions follow the CiA 402 state machine table", "[firmware
   CHECK(mrqp_fw_cia402_drive_next(OE, 0x0002, 0, nullptr) == QSA);
 }
 
-TEST_CASE("fault reset needs a rising edge; bit 7 is ignored outside Fault", "[firmware_if][cia402]")
-{
+TEST_CASE("fault reset needs a rising edge; bit 7 is ignored outside Fault", "[firmware_if][cia402]") {
   unsigned t = 0;
   CHECK(mrqp_fw_cia402_drive_next(FLT, 0x0080, 0x0080, &t) == FLT);  // held high: no edge
   CHECK(t == 0);
@@ -159,8 +187,7 @@ TEST_CASE("fault reset needs a rising edge; bit 7 is ignored outside Fault", "[f
   CHECK(mrqp_fw_cia402_drive_next(SOD, 0x0086, 0x0080, &t) == RTSO);
 }
 
-TEST_CASE("automatic transitions 1, 12, 13, 14", "[firmware_if][cia402]")
-{
+TEST_CASE("automatic transitions 1, 12, 13, 14", "[firmware_if][cia402]") {
   unsigned t = 0;
   CHECK(mrqp_fw_cia402_drive_event(NRTSO, MRQP_FW_CIA402_EV_INIT_COMPLETE, &t) == SOD);
   CHECK(t == 1);
@@ -179,8 +206,8 @@ TEST_CASE("automatic transitions 1, 12, 13, 14", "[firmware_if][cia402]")
   CHECK(mrqp_fw_cia402_drive_event(OE, MRQP_FW_CIA402_EV_QUICK_STOP_DONE, &t) == OE);
 }
 
-TEST_CASE("master helper drives an emulated drive to every target from every state", "[firmware_if][cia402]")
-{
+TEST_CASE("master helper drives an emulated drive to every target from every state",
+          "[firmware_if][cia402]") {
   const St targets[] = {SOD, RTSO, SO, OE};
   for (St start : all_states) {
     for (St target : targets) {
@@ -214,8 +241,7 @@ TEST_CASE("master helper drives an emulated drive to every target from every sta
   CHECK(mrqp_fw_cia402_master_controlword(UNK, OE, 0x000F) == 0x0000);
 }
 
-TEST_CASE("modes of operation of this contract", "[firmware_if][cia402]")
-{
+TEST_CASE("modes of operation of this contract", "[firmware_if][cia402]") {
   CHECK(MRQP_FW_MODE_CSP == 8);
   CHECK(MRQP_FW_MODE_CST == 10);
   CHECK(mrqp_fw_cia402_mode_supported(MRQP_FW_MODE_CSP));

@@ -10,8 +10,7 @@
 
 using namespace fwtest;
 
-TEST_CASE("CRC-16/CCITT-FALSE matches the published check value", "[firmware_if][crc]")
-{
+TEST_CASE("CRC-16/CCITT-FALSE matches the published check value", "[firmware_if][crc]") {
   const char* check = "123456789";
   const auto* p = reinterpret_cast<const std::uint8_t*>(check);
   CHECK(mrqp_fw_crc16(p, 9) == 0x29B1);
@@ -20,8 +19,8 @@ TEST_CASE("CRC-16/CCITT-FALSE matches the published check value", "[firmware_if]
   CHECK(mrqp_fw_crc16(nullptr, 0) == 0xFFFF);  // init value, no xorout
 }
 
-TEST_CASE("CRC-16 table code equals the bitwise definition; residue and incremental use", "[firmware_if][crc]")
-{
+TEST_CASE("CRC-16 table code equals the bitwise definition; residue and incremental use",
+          "[firmware_if][crc]") {
   std::mt19937 rng(1234);
   std::uniform_int_distribution<int> byte(0, 255);
   for (std::size_t n = 0; n <= 70; ++n) {
@@ -41,8 +40,7 @@ TEST_CASE("CRC-16 table code equals the bitwise definition; residue and incremen
   }
 }
 
-TEST_CASE("byte order helpers", "[firmware_if][bytes]")
-{
+TEST_CASE("byte order helpers", "[firmware_if][bytes]") {
   std::uint8_t b[4] = {0, 0, 0, 0};
   mrqp_fw_put_u16le(b, 0x1234);
   CHECK(b[0] == 0x34);
@@ -73,8 +71,8 @@ TEST_CASE("byte order helpers", "[firmware_if][bytes]")
   CHECK(mrqp_fw_sign_extend(0x80000000u, 32) == std::numeric_limits<std::int32_t>::min());
 }
 
-TEST_CASE("big-endian bit fields round-trip at any offset and leave other bits alone", "[firmware_if][bytes]")
-{
+TEST_CASE("big-endian bit fields round-trip at any offset and leave other bits alone",
+          "[firmware_if][bytes]") {
   std::mt19937 rng(99);
   for (int iter = 0; iter < 2000; ++iter) {
     const unsigned nbits = 1u + static_cast<unsigned>(rng() % 32u);
@@ -105,8 +103,7 @@ TEST_CASE("big-endian bit fields round-trip at any offset and leave other bits a
   CHECK(b2[1] == 0xBC);
 }
 
-TEST_CASE("NaN and finiteness tests look at the bits", "[firmware_if][saturate]")
-{
+TEST_CASE("NaN and finiteness tests look at the bits", "[firmware_if][saturate]") {
   CHECK(mrqp_fw_isnan_d(nand()));
   CHECK(mrqp_fw_isnan_d(-nand()));
   CHECK(mrqp_fw_isnan_d(std::numeric_limits<double>::signaling_NaN()));
@@ -122,8 +119,7 @@ TEST_CASE("NaN and finiteness tests look at the bits", "[firmware_if][saturate]"
   CHECK(mrqp_fw_isfinite_f(std::numeric_limits<float>::denorm_min()));
 }
 
-TEST_CASE("integer quantisation: rounding, closed range, saturation, NaN", "[firmware_if][saturate]")
-{
+TEST_CASE("integer quantisation: rounding, closed range, saturation, NaN", "[firmware_if][saturate]") {
   std::int64_t v = 42;
   CHECK(mrqp_fw_quantize_int(2.5, -10, 10, &v) == MRQP_FW_CONV_OK);
   CHECK(v == 3);
@@ -161,8 +157,7 @@ TEST_CASE("integer quantisation: rounding, closed range, saturation, NaN", "[fir
   CHECK(v == INT32_MAX);
 }
 
-TEST_CASE("linear [min,max] quantisation", "[firmware_if][saturate]")
-{
+TEST_CASE("linear [min,max] quantisation", "[firmware_if][saturate]") {
   std::uint32_t c = 7;
   CHECK(mrqp_fw_quantize_linear(-1.0, -1.0, 1.0, 12, &c) == MRQP_FW_CONV_OK);
   CHECK(c == 0);
@@ -194,8 +189,7 @@ TEST_CASE("linear [min,max] quantisation", "[firmware_if][saturate]")
   CHECK(mrqp_fw_dequantize_linear(0, -1.0, 1.0, 12) == -1.0);
 }
 
-TEST_CASE("signed fixed point never produces the reserved most-negative code", "[firmware_if][saturate]")
-{
+TEST_CASE("signed fixed point never produces the reserved most-negative code", "[firmware_if][saturate]") {
   std::int32_t c = 0;
   CHECK(mrqp_fw_quantize_fixed(-1e9, 1.0, 12, &c) == MRQP_FW_CONV_SAT_LOW);
   CHECK(c == -2047);
@@ -216,8 +210,7 @@ TEST_CASE("signed fixed point never produces the reserved most-negative code", "
   CHECK(mrqp_fw_quantize_fixed(nand(), 1.0, 16, &c) == MRQP_FW_CONV_NAN);
 }
 
-TEST_CASE("CAN FD lengths and DLC codes", "[firmware_if][frame]")
-{
+TEST_CASE("CAN FD lengths and DLC codes", "[firmware_if][frame]") {
   const unsigned valid[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 20, 24, 32, 48, 64};
   for (unsigned dlc = 0; dlc < 16; ++dlc) {
     CHECK(mrqp_fw_fd_dlc_to_len(static_cast<std::uint8_t>(dlc)) == valid[dlc]);
@@ -236,8 +229,7 @@ TEST_CASE("CAN FD lengths and DLC codes", "[firmware_if][frame]")
   CHECK(mrqp_fw_fd_len_round_up(65) == 0);
 }
 
-TEST_CASE("frame envelope checks", "[firmware_if][frame]")
-{
+TEST_CASE("frame envelope checks", "[firmware_if][frame]") {
   mrqp_fw_frame f = make_frame(0x123, {1, 2, 3});
   CHECK(mrqp_fw_frame_expect(&f, 0x123, 3, 0) == MRQP_FW_OK);
   CHECK(mrqp_fw_frame_expect(&f, 0x124, 3, 0) == MRQP_FW_ERR_ID);
@@ -253,8 +245,7 @@ TEST_CASE("frame envelope checks", "[firmware_if][frame]")
   mrqp_fw_frame_clear(nullptr);  // tolerated
 }
 
-TEST_CASE("every error code has a name", "[firmware_if][status]")
-{
+TEST_CASE("every error code has a name", "[firmware_if][status]") {
   for (int e = MRQP_FW_OK; e <= MRQP_FW_ERR_TORN; ++e) {
     const std::string s = mrqp_fw_err_str(static_cast<mrqp_fw_err>(e));
     CHECK_FALSE(s.empty());
@@ -265,8 +256,7 @@ TEST_CASE("every error code has a name", "[firmware_if][status]")
   CHECK_FALSE(mrqp_fw_pack_failed(0x0000FFFFu));
 }
 
-TEST_CASE("frame lengths on the wire (design card figures)", "[firmware_if][bus]")
-{
+TEST_CASE("frame lengths on the wire (design card figures)", "[firmware_if][bus]") {
   // Classic 8-byte data frame: 111 bits, 135 with worst-case stuffing.
   CHECK(mrqp_fw_bits_classic(8, 0).nominal_bits == 111u);
   CHECK(mrqp_fw_bits_classic(8, 1).nominal_bits == 135u);

@@ -13,8 +13,7 @@ const mrqp_fw_ft_scale kClassic = MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;  // 50 
 const mrqp_fw_ft_scale kFd = MRQP_FW_FT_SCALE_FD_DEFAULT_INIT;            // 1e6 counts/N and /N m
 }  // namespace
 
-TEST_CASE("force/torque classic pair, byte-exact", "[firmware_if][ft]")
-{
+TEST_CASE("force/torque classic pair, byte-exact", "[firmware_if][ft]") {
   // fx 1 N -> 50 = 0x0032, fy -1 N -> -50 = 0xFFCE, fz 655 N -> 32750 = 0x7FEE,
   // mx 1 mN m -> 1, my -32 N m -> -32000 = 0x8300, mz 0.
   mrqp_fw_ft_sample s{{1.0, -1.0, 655.0, 0.001, -32.0, 0.0}, 7, MRQP_FW_FT_STATUS_TARED};
@@ -35,8 +34,7 @@ TEST_CASE("force/torque classic pair, byte-exact", "[firmware_if][ft]")
   CHECK(d.status == MRQP_FW_FT_STATUS_TARED);
 }
 
-TEST_CASE("force/torque classic: torn pairs are rejected", "[firmware_if][ft]")
-{
+TEST_CASE("force/torque classic: torn pairs are rejected", "[firmware_if][ft]") {
   mrqp_fw_ft_sample s{{1, 2, 3, 0.1, 0.2, 0.3}, 200, 0};
   mrqp_fw_frame f{};
   mrqp_fw_frame m{};
@@ -70,8 +68,7 @@ TEST_CASE("force/torque classic: torn pairs are rejected", "[firmware_if][ft]")
   CHECK(mrqp_fw_ft_unpack_half(&kClassic, &bad, 1, &h) == MRQP_FW_ERR_FORMAT);
 }
 
-TEST_CASE("force/torque classic: limits, saturation, NaN", "[firmware_if][ft]")
-{
+TEST_CASE("force/torque classic: limits, saturation, NaN", "[firmware_if][ft]") {
   mrqp_fw_frame f{};
   mrqp_fw_frame m{};
   mrqp_fw_ft_sample d{};
@@ -128,8 +125,7 @@ TEST_CASE("force/torque classic: limits, saturation, NaN", "[firmware_if][ft]")
   CHECK(mrqp_fw_ft_pack_fd(&bad2, 1, &s, &f) == MRQP_FW_PACK_ERR_CONFIG);
 }
 
-TEST_CASE("force/torque FD frame, byte-exact and validated", "[firmware_if][ft]")
-{
+TEST_CASE("force/torque FD frame, byte-exact and validated", "[firmware_if][ft]") {
   // 1e6 counts per unit: fx 1 N -> 0x000F4240; fy -2.5 N -> -2500000 = 0xFFD9DA60;
   // fz 0; mx 0.000001 -> 1; my -1 -> 0xFFF0BDC0; mz 2147.483647 -> 0x7FFFFFFF.
   mrqp_fw_ft_sample s{{1.0, -2.5, 0.0, 0.000001, -1.0, 2147.483647}, 0xAB, MRQP_FW_FT_STATUS_TEMPERATURE};
@@ -181,8 +177,7 @@ TEST_CASE("force/torque FD frame, byte-exact and validated", "[firmware_if][ft]"
   CHECK(d.wrench[1] == Approx(-2147.483648));
 }
 
-TEST_CASE("force/torque tare command", "[firmware_if][ft]")
-{
+TEST_CASE("force/torque tare command", "[firmware_if][ft]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_ft_pack_tare(0x10, MRQP_FW_FT_CMD_TARE, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x210u);

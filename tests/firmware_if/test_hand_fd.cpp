@@ -12,13 +12,11 @@ namespace {
 
 const mrqp_fw_hand_scale kScale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
 
-double half_step(float lsb)
-{
+double half_step(float lsb) {
   return 0.5 * static_cast<double>(lsb) * (1 + 1e-6) + 1e-6;  // + float rounding of the result
 }
 
-mrqp_fw_hand_cmd random_cmd(std::mt19937& rng, unsigned count)
-{
+mrqp_fw_hand_cmd random_cmd(std::mt19937& rng, unsigned count) {
   std::uniform_real_distribution<float> up(-3.2f, 3.2f), uv(-40.0f, 40.0f), ut(-2.0f, 2.0f);
   mrqp_fw_hand_cmd c{};
   c.seq = static_cast<std::uint16_t>(rng());
@@ -33,8 +31,7 @@ mrqp_fw_hand_cmd random_cmd(std::mt19937& rng, unsigned count)
 
 }  // namespace
 
-TEST_CASE("hand FD frame lengths and joints per frame", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD frame lengths and joints per frame", "[firmware_if][hand]") {
   // 5-byte header + 5 bytes per joint + 2 CRC, rounded up to a CAN FD length.
   const unsigned cmd_len[] = {7, 12, 20, 24, 32, 32, 48, 48, 48, 64, 64, 64};
   const unsigned fb_len[] = {12, 16, 20, 24, 32, 48, 48, 48, 64, 64, 64, 64};
@@ -57,8 +54,7 @@ TEST_CASE("hand FD frame lengths and joints per frame", "[firmware_if][hand]")
   CHECK(mrqp_fw_hand_frames_needed(23) == 3);
 }
 
-TEST_CASE("hand FD command, byte-exact", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD command, byte-exact", "[firmware_if][hand]") {
   // board 2, seq 0x1234, mode position, first joint 3, one joint:
   // p = 1.0 rad -> 10000 = 0x2710; v = -0.02 rad/s -> -1 = 0xFFF; t = 0.5 N m -> 500 = 0x1F4
   mrqp_fw_hand_cmd c{};
@@ -100,8 +96,7 @@ TEST_CASE("hand FD command, byte-exact", "[firmware_if][hand]")
   CHECK(d.mode == MRQP_FW_HAND_MODE_DISABLED);
 }
 
-TEST_CASE("hand FD feedback, byte-exact", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD feedback, byte-exact", "[firmware_if][hand]") {
   mrqp_fw_hand_fb b{};
   b.cmd_seq_echo = 0xBEEF;
   b.counter = 0x42;
@@ -110,13 +105,13 @@ TEST_CASE("hand FD feedback, byte-exact", "[firmware_if][hand]")
   b.first_joint = 0;
   b.count = 2;
   b.joint[0] = {-1.0f, 0.04f, -0.001f};  // -10000 = D8F0, 2 = 002, -1 = FFF
-  b.joint[1] = {0.0f, 0.0f, 2.047f};      // 0000, 000, 2047 = 7FF
+  b.joint[1] = {0.0f, 0.0f, 2.047f};     // 0000, 000, 2047 = 7FF
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_hand_pack_fb(&kScale, 15, &b, &f, nullptr) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x14Fu);
   REQUIRE(f.len == 20);
-  const Bytes body{0xBE, 0xEF, 0x42, 0x12, 0x21, 0x00, 0x02, 0xD8, 0xF0, 0x00,
-                   0x2F, 0xFF, 0x00, 0x00, 0x00, 0x07, 0xFF, 0x00};  // 17 used + 1 padding
+  const Bytes body{0xBE, 0xEF, 0x42, 0x12, 0x21, 0x00, 0x02, 0xD8, 0xF0,
+                   0x00, 0x2F, 0xFF, 0x00, 0x00, 0x00, 0x07, 0xFF, 0x00};  // 17 used + 1 padding
   CHECK(Bytes(f.data, f.data + 18) == body);
   const std::uint16_t crc = crc16_reference(body.data(), body.size());
   CHECK(f.data[18] == (crc >> 8));
@@ -132,8 +127,7 @@ TEST_CASE("hand FD feedback, byte-exact", "[firmware_if][hand]")
   CHECK(d.joint[1].torque == Approx(2.047f));
 }
 
-TEST_CASE("hand FD round trips for every joint count stay within half a step", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD round trips for every joint count stay within half a step", "[firmware_if][hand]") {
   std::mt19937 rng(2024);
   mrqp_fw_frame f{};
   for (int iter = 0; iter < 300; ++iter) {
@@ -171,8 +165,7 @@ TEST_CASE("hand FD round trips for every joint count stay within half a step", "
   }
 }
 
-TEST_CASE("hand FD limits: saturation per field and per joint, NaN rejected", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD limits: saturation per field and per joint, NaN rejected", "[firmware_if][hand]") {
   mrqp_fw_hand_cmd c{};
   c.mode = MRQP_FW_HAND_MODE_POSITION;
   c.count = 4;
@@ -211,8 +204,7 @@ TEST_CASE("hand FD limits: saturation per field and per joint, NaN rejected", "[
   CHECK_FALSE(mrqp_fw_pack_failed(mrqp_fw_hand_pack_cmd(&kScale, 0, &tail, &f, nullptr)));
 }
 
-TEST_CASE("hand FD pack refuses bad arguments and configuration", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD pack refuses bad arguments and configuration", "[firmware_if][hand]") {
   mrqp_fw_hand_cmd c{};
   c.count = 1;
   mrqp_fw_frame f{};
@@ -243,8 +235,7 @@ TEST_CASE("hand FD pack refuses bad arguments and configuration", "[firmware_if]
   CHECK(is_cleared(f));
 }
 
-TEST_CASE("hand FD unpack rejects corrupted and malformed frames", "[firmware_if][hand]")
-{
+TEST_CASE("hand FD unpack rejects corrupted and malformed frames", "[firmware_if][hand]") {
   std::mt19937 rng(5);
   const mrqp_fw_hand_cmd c = random_cmd(rng, 9);
   mrqp_fw_frame good{};

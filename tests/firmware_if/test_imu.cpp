@@ -6,16 +6,15 @@
 
 #include <cmath>
 #include <limits>
-#include <utility>
 #include <random>
+#include <utility>
 
 using namespace fwtest;
 
 namespace {
 const mrqp_fw_imu_scale kScale = MRQP_FW_IMU_SCALE_DEFAULT_INIT;  // 1000 counts per rad/s, 200 per m/s^2
 
-mrqp_fw_imu_sample sample(double qw, double qx, double qy, double qz)
-{
+mrqp_fw_imu_sample sample(double qw, double qx, double qy, double qz) {
   mrqp_fw_imu_sample s{};
   s.orientation[0] = qw;
   s.orientation[1] = qx;
@@ -25,8 +24,7 @@ mrqp_fw_imu_sample sample(double qw, double qx, double qy, double qz)
 }
 }  // namespace
 
-TEST_CASE("IMU frame, byte-exact", "[firmware_if][imu]")
-{
+TEST_CASE("IMU frame, byte-exact", "[firmware_if][imu]") {
   // q = (0.6, 0, 0.8, 0): 0.6 * 32767 = 19660.2 -> 0x4CCC, 0.8 * 32767 = 26213.6 -> 0x6666.
   // rate (1, -0.5, 0.001) rad/s -> 1000 = 0x03E8, -500 = 0xFE0C, 1.
   // specific force (0, 0, 9.81) m/s^2 -> 0, 0, 1962 = 0x07AA. seq 0x2A, status ALIGNING.
@@ -60,8 +58,7 @@ TEST_CASE("IMU frame, byte-exact", "[firmware_if][imu]")
   CHECK(d.status == MRQP_FW_IMU_STATUS_ALIGNING);
 }
 
-TEST_CASE("IMU frame: limits of every channel and saturation", "[firmware_if][imu]")
-{
+TEST_CASE("IMU frame: limits of every channel and saturation", "[firmware_if][imu]") {
   mrqp_fw_frame f{};
   mrqp_fw_imu_sample d{};
   // The ends of the i16 ranges: 32.767 rad/s, -32.767 rad/s, 163.835 m/s^2; q component 1.
@@ -108,8 +105,7 @@ TEST_CASE("IMU frame: limits of every channel and saturation", "[firmware_if][im
   CHECK(d.orientation[3] == -1.0);
 }
 
-TEST_CASE("IMU frame: random round trips stay within half a step", "[firmware_if][imu]")
-{
+TEST_CASE("IMU frame: random round trips stay within half a step", "[firmware_if][imu]") {
   std::mt19937 rng(7);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::uniform_real_distribution<double> rate(-32.7, 32.7);
@@ -146,8 +142,7 @@ TEST_CASE("IMU frame: random round trips stay within half a step", "[firmware_if
   }
 }
 
-TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][imu]")
-{
+TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][imu]") {
   mrqp_fw_imu_sample s = sample(0.5, 0.5, 0.5, 0.5);
   s.seq = 9;
   mrqp_fw_frame good{};
@@ -183,7 +178,8 @@ TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][i
   CHECK(mrqp_fw_imu_unpack(&kScale, &f, 5, &d) == MRQP_FW_ERR_RANGE);
 
   // The norm check: |q| = 1.0099 and 0.9901 are accepted, 1.0101 and 0.9899 are not.
-  for (const auto& [c, ok] : {std::pair<double, bool>{1.0099, true}, {1.0101, false}, {0.9899, false}, {0.9901, true}}) {
+  for (const auto& [c, ok] :
+       {std::pair<double, bool>{1.0099, true}, {1.0101, false}, {0.9899, false}, {0.9901, true}}) {
     f = good;
     // A component above 1 cannot be coded: q = (c, c, 0, 0) / sqrt(2) has norm c.
     const double w = c / std::sqrt(2.0);

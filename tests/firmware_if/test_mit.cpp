@@ -14,8 +14,7 @@ const mrqp_fw_mit_ranges kDefault = MRQP_FW_MIT_RANGES_DEFAULT_INIT;
 
 // Largest decoding error of a field that was not saturated: half a step, plus float rounding of
 // the decoded value.
-double bound(float lo, float hi, unsigned bits)
-{
+double bound(float lo, float hi, unsigned bits) {
   const double step = (static_cast<double>(hi) - lo) / ((1u << bits) - 1u);
   const double mag = std::max(std::fabs(lo), std::fabs(hi));
   return 0.5 * step + 4.0 * mag * 1.2e-7;
@@ -23,8 +22,7 @@ double bound(float lo, float hi, unsigned bits)
 
 }  // namespace
 
-TEST_CASE("MIT special commands, byte-exact", "[firmware_if][mit]")
-{
+TEST_CASE("MIT special commands, byte-exact", "[firmware_if][mit]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_mit_pack_special(1, MRQP_FW_MIT_KIND_ENABLE, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 1u);
@@ -53,8 +51,7 @@ TEST_CASE("MIT special commands, byte-exact", "[firmware_if][mit]")
   CHECK(mrqp_fw_mit_classify(nullptr) == MRQP_FW_MIT_KIND_INVALID);
 }
 
-TEST_CASE("MIT command encodings computed by hand", "[firmware_if][mit]")
-{
+TEST_CASE("MIT command encodings computed by hand", "[firmware_if][mit]") {
   mrqp_fw_frame f{};
   // p = 0   -> (0 + 12.5) / 25 * 65535 = 32767.5 -> 32768 = 0x8000
   // v = 0   -> 65 / 130 * 4095 = 2047.5 -> 2048 = 0x800
@@ -85,8 +82,7 @@ TEST_CASE("MIT command encodings computed by hand", "[firmware_if][mit]")
   CHECK(payload(f) == Bytes{0xFF, 0xFF, 0x00, 0x0F, 0xFF, 0x00, 0x00, 0x00});
 }
 
-TEST_CASE("an impedance command never spells a special command", "[firmware_if][mit]")
-{
+TEST_CASE("an impedance command never spells a special command", "[firmware_if][mit]") {
   mrqp_fw_frame f{};
   for (std::uint32_t code : {0xFFCu, 0xFFDu, 0xFFEu}) {
     const float t = static_cast<float>(-18.0 + 36.0 * code / 4095.0);
@@ -100,8 +96,7 @@ TEST_CASE("an impedance command never spells a special command", "[firmware_if][
   CHECK(mrqp_fw_mit_pack_cmd(&kDefault, 9, &cmd, &f) == MRQP_FW_PACK_OK);
 }
 
-TEST_CASE("MIT reply, byte-exact", "[firmware_if][mit]")
-{
+TEST_CASE("MIT reply, byte-exact", "[firmware_if][mit]") {
   mrqp_fw_frame f{};
   const mrqp_fw_mit_reply r{1, 0.0f, 0.0f, 0.0f};
   REQUIRE(mrqp_fw_mit_pack_reply(&kDefault, &r, &f) == MRQP_FW_PACK_OK);
@@ -133,8 +128,7 @@ TEST_CASE("MIT reply, byte-exact", "[firmware_if][mit]")
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_FORMAT);
 }
 
-TEST_CASE("MIT round trips stay within half a step; limits saturate and are flagged", "[firmware_if][mit]")
-{
+TEST_CASE("MIT round trips stay within half a step; limits saturate and are flagged", "[firmware_if][mit]") {
   std::mt19937 rng(42);
   std::uniform_real_distribution<float> up(-12.5f, 12.5f), uv(-65.0f, 65.0f), ukp(0.0f, 500.0f),
       ukd(0.0f, 5.0f), ut(-18.0f, 18.0f);
@@ -176,18 +170,18 @@ TEST_CASE("MIT round trips stay within half a step; limits saturate and are flag
     mrqp_fw_pack_flags flags;
   };
   const Case cases[] = {
-    {{static_cast<float>(12.5 + 2 * pstep), 0, 0, 0, 0}, MRQP_FW_MIT_SAT_P},
-    {{static_cast<float>(12.5 + 0.3 * pstep), 0, 0, 0, 0}, MRQP_FW_PACK_OK},  // within half a step
-    {{-13.0f, 0, 0, 0, 0}, MRQP_FW_MIT_SAT_P},
-    {{0, 65.1f, 0, 0, 0}, MRQP_FW_MIT_SAT_V},
-    {{0, -1000.0f, 0, 0, 0}, MRQP_FW_MIT_SAT_V},
-    {{0, 0, -1.0f, 0, 0}, MRQP_FW_MIT_SAT_KP},
-    {{0, 0, 501.0f, 0, 0}, MRQP_FW_MIT_SAT_KP},
-    {{0, 0, 0, 5.01f, 0}, MRQP_FW_MIT_SAT_KD},
-    {{0, 0, 0, 0, -18.1f}, MRQP_FW_MIT_SAT_T},
-    {{0, 0, 0, 0, inff()}, MRQP_FW_MIT_SAT_T},
-    {{inff(), -inff(), 1e30f, -1e30f, 19.0f},
-     MRQP_FW_MIT_SAT_P | MRQP_FW_MIT_SAT_V | MRQP_FW_MIT_SAT_KP | MRQP_FW_MIT_SAT_KD | MRQP_FW_MIT_SAT_T},
+      {{static_cast<float>(12.5 + 2 * pstep), 0, 0, 0, 0}, MRQP_FW_MIT_SAT_P},
+      {{static_cast<float>(12.5 + 0.3 * pstep), 0, 0, 0, 0}, MRQP_FW_PACK_OK},  // within half a step
+      {{-13.0f, 0, 0, 0, 0}, MRQP_FW_MIT_SAT_P},
+      {{0, 65.1f, 0, 0, 0}, MRQP_FW_MIT_SAT_V},
+      {{0, -1000.0f, 0, 0, 0}, MRQP_FW_MIT_SAT_V},
+      {{0, 0, -1.0f, 0, 0}, MRQP_FW_MIT_SAT_KP},
+      {{0, 0, 501.0f, 0, 0}, MRQP_FW_MIT_SAT_KP},
+      {{0, 0, 0, 5.01f, 0}, MRQP_FW_MIT_SAT_KD},
+      {{0, 0, 0, 0, -18.1f}, MRQP_FW_MIT_SAT_T},
+      {{0, 0, 0, 0, inff()}, MRQP_FW_MIT_SAT_T},
+      {{inff(), -inff(), 1e30f, -1e30f, 19.0f},
+       MRQP_FW_MIT_SAT_P | MRQP_FW_MIT_SAT_V | MRQP_FW_MIT_SAT_KP | MRQP_FW_MIT_SAT_KD | MRQP_FW_MIT_SAT_T},
   };
   for (const Case& c : cases) {
     REQUIRE(mrqp_fw_mit_pack_cmd(&kDefault, 1, &c.cmd, &f) == c.flags);
@@ -205,8 +199,7 @@ TEST_CASE("MIT round trips stay within half a step; limits saturate and are flag
   CHECK(f.data[1] == 0xFF);
 }
 
-TEST_CASE("MIT: NaN is rejected, bad configuration and ids refused", "[firmware_if][mit]")
-{
+TEST_CASE("MIT: NaN is rejected, bad configuration and ids refused", "[firmware_if][mit]") {
   mrqp_fw_frame f{};
   for (int field = 0; field < 5; ++field) {
     mrqp_fw_mit_cmd c{0, 0, 0, 0, 0};
@@ -254,8 +247,7 @@ TEST_CASE("MIT: NaN is rejected, bad configuration and ids refused", "[firmware_
   CHECK(mrqp_fw_mit_unpack_cmd(&kDefault, &g, nullptr, &d) == MRQP_FW_ERR_FORMAT);
 }
 
-TEST_CASE("MIT with custom ranges", "[firmware_if][mit]")
-{
+TEST_CASE("MIT with custom ranges", "[firmware_if][mit]") {
   // Asymmetric ranges map min to code 0 and max to the top code.
   const mrqp_fw_mit_ranges r{0.0f, 6.0f, -10.0f, 30.0f, 1.0f, 2.0f, 0.0f, 0.1f, -1.0f, 3.0f};
   REQUIRE(mrqp_fw_mit_ranges_valid(&r));

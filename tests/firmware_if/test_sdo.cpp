@@ -8,11 +8,11 @@
 
 using namespace fwtest;
 
-TEST_CASE("expedited SDO frames, byte-exact", "[firmware_if][sdo]")
-{
+TEST_CASE("expedited SDO frames, byte-exact", "[firmware_if][sdo]") {
   mrqp_fw_frame f{};
   const std::uint8_t mode = MRQP_FW_MODE_CSP;
-  REQUIRE(mrqp_fw_sdo_pack_download_req(3, MRQP_FW_OBJ_MODES_OF_OPERATION, 0, &mode, 1, &f) == MRQP_FW_PACK_OK);
+  REQUIRE(mrqp_fw_sdo_pack_download_req(3, MRQP_FW_OBJ_MODES_OF_OPERATION, 0, &mode, 1, &f) ==
+          MRQP_FW_PACK_OK);
   CHECK(f.id == 0x603u);
   CHECK(payload(f) == Bytes{0x2F, 0x60, 0x60, 0x00, 0x08, 0x00, 0x00, 0x00});
 
@@ -51,8 +51,7 @@ TEST_CASE("expedited SDO frames, byte-exact", "[firmware_if][sdo]")
   CHECK(mrqp_fw_sdo_pack_upload_req(128, 0x2000, 0, &f) == MRQP_FW_PACK_ERR_ARG);
 }
 
-TEST_CASE("segmented SDO frames, byte-exact", "[firmware_if][sdo]")
-{
+TEST_CASE("segmented SDO frames, byte-exact", "[firmware_if][sdo]") {
   mrqp_fw_frame f{};
   REQUIRE(mrqp_fw_sdo_pack_download_init_segmented(4, 0x1008, 0, 20, &f) == MRQP_FW_PACK_OK);
   CHECK(f.id == 0x604u);
@@ -84,8 +83,7 @@ TEST_CASE("segmented SDO frames, byte-exact", "[firmware_if][sdo]")
   CHECK(mrqp_fw_sdo_pack_upload_seg_req(4, 2, &f) == MRQP_FW_PACK_ERR_ARG);
 }
 
-TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware_if][sdo]")
-{
+TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware_if][sdo]") {
   mrqp_fw_sdo_msg m{};
   mrqp_fw_frame f = make_frame(0x603, {0x2F, 0x60, 0x60, 0x00, 0x08, 0x00, 0x00, 0x00});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
@@ -169,24 +167,43 @@ TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware
   CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_FORMAT);
 }
 
-TEST_CASE("SDO abort codes have their CiA 301 names", "[firmware_if][sdo]")
-{
+TEST_CASE("SDO abort codes have their CiA 301 names", "[firmware_if][sdo]") {
   CHECK(std::string(mrqp_fw_sdo_abort_str(0x05030000u)) == "toggle bit not alternated");
   CHECK(std::string(mrqp_fw_sdo_abort_str(0x06020000u)) == "object does not exist in the object dictionary");
   CHECK(std::string(mrqp_fw_sdo_abort_str(0x06090011u)) == "sub-index does not exist");
   CHECK(std::string(mrqp_fw_sdo_abort_str(0x08000022u)).find("present device state") != std::string::npos);
   CHECK(std::string(mrqp_fw_sdo_abort_str(0x12345678u)) == "unknown SDO abort code");
-  const std::uint32_t all[] = {
-    MRQP_FW_SDO_ABORT_TOGGLE, MRQP_FW_SDO_ABORT_TIMEOUT, MRQP_FW_SDO_ABORT_COMMAND, MRQP_FW_SDO_ABORT_BLOCK_SIZE,
-    MRQP_FW_SDO_ABORT_SEQUENCE, MRQP_FW_SDO_ABORT_CRC, MRQP_FW_SDO_ABORT_OUT_OF_MEMORY,
-    MRQP_FW_SDO_ABORT_UNSUPPORTED_ACCESS, MRQP_FW_SDO_ABORT_WRITE_ONLY, MRQP_FW_SDO_ABORT_READ_ONLY,
-    MRQP_FW_SDO_ABORT_NO_OBJECT, MRQP_FW_SDO_ABORT_NOT_MAPPABLE, MRQP_FW_SDO_ABORT_PDO_LENGTH,
-    MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE, MRQP_FW_SDO_ABORT_INTERNAL_INCOMPATIBLE, MRQP_FW_SDO_ABORT_HARDWARE,
-    MRQP_FW_SDO_ABORT_TYPE_LENGTH, MRQP_FW_SDO_ABORT_TYPE_LENGTH_HIGH, MRQP_FW_SDO_ABORT_TYPE_LENGTH_LOW,
-    MRQP_FW_SDO_ABORT_NO_SUBINDEX, MRQP_FW_SDO_ABORT_INVALID_VALUE, MRQP_FW_SDO_ABORT_VALUE_HIGH,
-    MRQP_FW_SDO_ABORT_VALUE_LOW, MRQP_FW_SDO_ABORT_MAX_LESS_MIN, MRQP_FW_SDO_ABORT_NO_RESOURCE,
-    MRQP_FW_SDO_ABORT_GENERAL, MRQP_FW_SDO_ABORT_STORE, MRQP_FW_SDO_ABORT_STORE_LOCAL,
-    MRQP_FW_SDO_ABORT_STORE_STATE, MRQP_FW_SDO_ABORT_NO_DICTIONARY, MRQP_FW_SDO_ABORT_NO_DATA};
+  const std::uint32_t all[] = {MRQP_FW_SDO_ABORT_TOGGLE,
+                               MRQP_FW_SDO_ABORT_TIMEOUT,
+                               MRQP_FW_SDO_ABORT_COMMAND,
+                               MRQP_FW_SDO_ABORT_BLOCK_SIZE,
+                               MRQP_FW_SDO_ABORT_SEQUENCE,
+                               MRQP_FW_SDO_ABORT_CRC,
+                               MRQP_FW_SDO_ABORT_OUT_OF_MEMORY,
+                               MRQP_FW_SDO_ABORT_UNSUPPORTED_ACCESS,
+                               MRQP_FW_SDO_ABORT_WRITE_ONLY,
+                               MRQP_FW_SDO_ABORT_READ_ONLY,
+                               MRQP_FW_SDO_ABORT_NO_OBJECT,
+                               MRQP_FW_SDO_ABORT_NOT_MAPPABLE,
+                               MRQP_FW_SDO_ABORT_PDO_LENGTH,
+                               MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE,
+                               MRQP_FW_SDO_ABORT_INTERNAL_INCOMPATIBLE,
+                               MRQP_FW_SDO_ABORT_HARDWARE,
+                               MRQP_FW_SDO_ABORT_TYPE_LENGTH,
+                               MRQP_FW_SDO_ABORT_TYPE_LENGTH_HIGH,
+                               MRQP_FW_SDO_ABORT_TYPE_LENGTH_LOW,
+                               MRQP_FW_SDO_ABORT_NO_SUBINDEX,
+                               MRQP_FW_SDO_ABORT_INVALID_VALUE,
+                               MRQP_FW_SDO_ABORT_VALUE_HIGH,
+                               MRQP_FW_SDO_ABORT_VALUE_LOW,
+                               MRQP_FW_SDO_ABORT_MAX_LESS_MIN,
+                               MRQP_FW_SDO_ABORT_NO_RESOURCE,
+                               MRQP_FW_SDO_ABORT_GENERAL,
+                               MRQP_FW_SDO_ABORT_STORE,
+                               MRQP_FW_SDO_ABORT_STORE_LOCAL,
+                               MRQP_FW_SDO_ABORT_STORE_STATE,
+                               MRQP_FW_SDO_ABORT_NO_DICTIONARY,
+                               MRQP_FW_SDO_ABORT_NO_DATA};
   for (std::uint32_t code : all) {
     CHECK(std::string(mrqp_fw_sdo_abort_str(code)) != "unknown SDO abort code");
   }
@@ -207,57 +224,56 @@ struct TestServer {
   bool abort_reads = false;
 
   // Returns true and fills `resp` if the server answers.
-  bool handle(const mrqp_fw_frame& req, mrqp_fw_frame& resp)
-  {
+  bool handle(const mrqp_fw_frame& req, mrqp_fw_frame& resp) {
     mrqp_fw_sdo_msg m{};
     if (mrqp_fw_sdo_unpack(&req, &m) != MRQP_FW_OK || m.from_server || m.node != node) {
       return false;
     }
     switch (m.kind) {
-    case MRQP_FW_SDO_UPLOAD_INIT_REQ:
-      if (abort_reads || m.index != 0x2000 || m.subindex != 1) {
-        mrqp_fw_sdo_pack_abort(node, 1, m.index, m.subindex, MRQP_FW_SDO_ABORT_NO_OBJECT, &resp);
+      case MRQP_FW_SDO_UPLOAD_INIT_REQ:
+        if (abort_reads || m.index != 0x2000 || m.subindex != 1) {
+          mrqp_fw_sdo_pack_abort(node, 1, m.index, m.subindex, MRQP_FW_SDO_ABORT_NO_OBJECT, &resp);
+          return true;
+        }
+        pos = 0;
+        toggle = 0;
+        if (value.size() <= 4 && !value.empty()) {
+          mrqp_fw_sdo_pack_upload_resp(node, m.index, m.subindex, value.data(),
+                                       static_cast<unsigned>(value.size()), &resp);
+        } else {
+          mrqp_fw_sdo_pack_upload_resp_segmented(node, m.index, m.subindex,
+                                                 static_cast<std::uint32_t>(value.size()), &resp);
+        }
+        return true;
+      case MRQP_FW_SDO_UPLOAD_SEG_REQ: {
+        const std::size_t n = std::min<std::size_t>(7, value.size() - pos);
+        const bool last = pos + n == value.size();
+        const unsigned t = wrong_toggle ? (m.toggle ^ 1u) : m.toggle;
+        mrqp_fw_sdo_pack_segment(node, 1, t, value.data() + pos, static_cast<unsigned>(n), last, &resp);
+        pos += n;
         return true;
       }
-      pos = 0;
-      toggle = 0;
-      if (value.size() <= 4 && !value.empty()) {
-        mrqp_fw_sdo_pack_upload_resp(node, m.index, m.subindex, value.data(), static_cast<unsigned>(value.size()),
-                                     &resp);
-      } else {
-        mrqp_fw_sdo_pack_upload_resp_segmented(node, m.index, m.subindex, static_cast<std::uint32_t>(value.size()),
-                                               &resp);
-      }
-      return true;
-    case MRQP_FW_SDO_UPLOAD_SEG_REQ: {
-      const std::size_t n = std::min<std::size_t>(7, value.size() - pos);
-      const bool last = pos + n == value.size();
-      const unsigned t = wrong_toggle ? (m.toggle ^ 1u) : m.toggle;
-      mrqp_fw_sdo_pack_segment(node, 1, t, value.data() + pos, static_cast<unsigned>(n), last, &resp);
-      pos += n;
-      return true;
-    }
-    case MRQP_FW_SDO_DOWNLOAD_INIT_REQ:
-      written.clear();
-      if (m.expedited) {
-        written.assign(m.data, m.data + m.n);
-      }
-      announced = m.size;
-      mrqp_fw_sdo_pack_download_resp(node, m.index, m.subindex, &resp);
-      return true;
-    case MRQP_FW_SDO_DOWNLOAD_SEG_REQ:
-      written.insert(written.end(), m.data, m.data + m.n);
-      mrqp_fw_sdo_pack_download_seg_resp(node, wrong_toggle ? (m.toggle ^ 1u) : m.toggle, &resp);
-      return true;
-    default: return false;
+      case MRQP_FW_SDO_DOWNLOAD_INIT_REQ:
+        written.clear();
+        if (m.expedited) {
+          written.assign(m.data, m.data + m.n);
+        }
+        announced = m.size;
+        mrqp_fw_sdo_pack_download_resp(node, m.index, m.subindex, &resp);
+        return true;
+      case MRQP_FW_SDO_DOWNLOAD_SEG_REQ:
+        written.insert(written.end(), m.data, m.data + m.n);
+        mrqp_fw_sdo_pack_download_seg_resp(node, wrong_toggle ? (m.toggle ^ 1u) : m.toggle, &resp);
+        return true;
+      default:
+        return false;
     }
   }
 };
 
 // Runs the client against the server until the client stops sending. Returns the last step.
 mrqp_fw_sdo_step run(mrqp_fw_sdo_client& c, TestServer& s, mrqp_fw_sdo_step step, mrqp_fw_frame& out,
-                     int* frames = nullptr)
-{
+                     int* frames = nullptr) {
   int count = 0;
   while (step == MRQP_FW_SDO_STEP_SEND) {
     ++count;
@@ -274,8 +290,7 @@ mrqp_fw_sdo_step run(mrqp_fw_sdo_client& c, TestServer& s, mrqp_fw_sdo_step step
 
 }  // namespace
 
-TEST_CASE("SDO client reads and writes any size through the emulated server", "[firmware_if][sdo]")
-{
+TEST_CASE("SDO client reads and writes any size through the emulated server", "[firmware_if][sdo]") {
   for (std::size_t size = 1; size <= 30; ++size) {
     TestServer s;
     for (std::size_t i = 0; i < size; ++i) {
@@ -309,15 +324,13 @@ TEST_CASE("SDO client reads and writes any size through the emulated server", "[
   }
 }
 
-TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[firmware_if][sdo]")
-{
+TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[firmware_if][sdo]") {
   TestServer s;
   s.value = Bytes(20, 0x55);
   mrqp_fw_frame out{};
   std::uint8_t buf[64] = {};
 
-  SECTION("wrong toggle from the server")
-  {
+  SECTION("wrong toggle from the server") {
     s.wrong_toggle = true;
     mrqp_fw_sdo_client c{};
     mrqp_fw_sdo_step step = mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, sizeof(buf), &out);
@@ -328,25 +341,23 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     CHECK(payload(out) == Bytes{0x80, 0x00, 0x20, 0x01, 0x00, 0x00, 0x03, 0x05});
     CHECK(c.state == MRQP_FW_SDO_CLIENT_IDLE);
   }
-  SECTION("wrong toggle on a segmented download")
-  {
+  SECTION("wrong toggle on a segmented download") {
     s.wrong_toggle = true;
     mrqp_fw_sdo_client c{};
-    mrqp_fw_sdo_step step = mrqp_fw_sdo_client_start_download(&c, s.node, 0x2000, 1, s.value.data(), 20, &out);
+    mrqp_fw_sdo_step step =
+        mrqp_fw_sdo_client_start_download(&c, s.node, 0x2000, 1, s.value.data(), 20, &out);
     step = run(c, s, step, out);
     CHECK(step == MRQP_FW_SDO_STEP_ABORT_SEND);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_TOGGLE);
   }
-  SECTION("buffer too small")
-  {
+  SECTION("buffer too small") {
     mrqp_fw_sdo_client c{};
     mrqp_fw_sdo_step step = mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, 10, &out);
     step = run(c, s, step, out);
     CHECK(step == MRQP_FW_SDO_STEP_ABORT_SEND);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_OUT_OF_MEMORY);
   }
-  SECTION("server abort")
-  {
+  SECTION("server abort") {
     s.abort_reads = true;
     mrqp_fw_sdo_client c{};
     mrqp_fw_sdo_step step = mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, sizeof(buf), &out);
@@ -355,8 +366,7 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_NO_OBJECT);
     CHECK(is_cleared(out));
   }
-  SECTION("timeout, foreign frames, misuse")
-  {
+  SECTION("timeout, foreign frames, misuse") {
     mrqp_fw_sdo_client c{};
     mrqp_fw_sdo_step step = mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, sizeof(buf), &out);
     REQUIRE(step == MRQP_FW_SDO_STEP_SEND);
@@ -388,7 +398,8 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     CHECK(mrqp_fw_sdo_client_on_frame(&c, &block, &out) == MRQP_FW_SDO_STEP_ABORT_SEND);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_COMMAND);
     // Invalid starts.
-    CHECK(mrqp_fw_sdo_client_start_upload(&c, 0, 0x2000, 1, buf, sizeof(buf), &out) == MRQP_FW_SDO_STEP_ERROR);
+    CHECK(mrqp_fw_sdo_client_start_upload(&c, 0, 0x2000, 1, buf, sizeof(buf), &out) ==
+          MRQP_FW_SDO_STEP_ERROR);
     CHECK(mrqp_fw_sdo_client_start_upload(&c, 9, 0x2000, 1, buf, 0, &out) == MRQP_FW_SDO_STEP_ERROR);
     CHECK(mrqp_fw_sdo_client_start_download(&c, 9, 0x2000, 1, buf, 0, &out) == MRQP_FW_SDO_STEP_ERROR);
   }

@@ -30,9 +30,11 @@ const char* kScene =
 
 const char* kDrives =
     "      cia402:\n"
-    "        - {bus: a, mode: csp, first_node: 1, joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4,\n"
+    "        - {bus: a, mode: csp, first_node: 1, joints: [panda_joint1, panda_joint2, panda_joint3, "
+    "panda_joint4,\n"
     "                                                       panda_joint5]}\n"
-    "        - {bus: b, mode: csp, first_node: 6, joints: [panda_joint6, panda_joint7, panda_finger_joint1]}\n"
+    "        - {bus: b, mode: csp, first_node: 6, joints: [panda_joint6, panda_joint7, "
+    "panda_finger_joint1]}\n"
     "\n";
 
 loop::ResolvedHardware resolve(const std::string& hw) {
@@ -83,10 +85,12 @@ TEST_CASE("loop: hardware section errors name file, line and field", "[loop][har
         "s.yaml:20: hardware.robots[0].cia402[0].bus: unknown bus 'c' (not in hardware.buses)");
   CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [elbow]}\n") ==
         "s.yaml:20: hardware.robots[0].cia402[0].joints[0]: entity 'panda' has no joint 'elbow'");
-  CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1, panda_joint1]}\n") ==
-        "s.yaml:20: hardware.robots[0].cia402[0].joints[1]: 'panda_joint1' is listed twice");
+  CHECK(
+      errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1, panda_joint1]}\n") ==
+      "s.yaml:20: hardware.robots[0].cia402[0].joints[1]: 'panda_joint1' is listed twice");
   CHECK(errorOf(kBuses + robot +
-                "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n        - {bus: a, first_node: 1, joints: [panda_joint2]}\n") ==
+                "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n        - {bus: a, first_node: "
+                "1, joints: [panda_joint2]}\n") ==
         "s.yaml:21: hardware.robots[0].cia402[1].joints[0]: node id 1 on bus 'a' is already used (line 20)");
   CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n") ==
         "s.yaml:17: hardware.robots[0]: actuated joint 'panda_joint2' of 'panda' has no drive");
@@ -99,8 +103,9 @@ TEST_CASE("loop: hardware section errors name file, line and field", "[loop][har
         "s.yaml:18: hardware.robots[0].divisor: expected an integer in [1, 1000], got 0");
   CHECK(errorOf("hardware:\n  buses:\n    - {name: a, bitrate: 5}\n  robots: []\n") ==
         "s.yaml:14: hardware.buses[0].bitrate: expected an integer in [10000, 20000000], got 5");
-  CHECK(errorOf(kBuses + robot + kDrives + "      imus:\n        - {frame: panda_link8, bus: a, node: 30}\n") ==
-        "s.yaml:25: hardware.robots[0].imus: 'panda' has no floating base to estimate");
+  CHECK(
+      errorOf(kBuses + robot + kDrives + "      imus:\n        - {frame: panda_link8, bus: a, node: 30}\n") ==
+      "s.yaml:25: hardware.robots[0].imus: 'panda' has no floating base to estimate");
 }
 
 TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loop][hardware]") {

@@ -45,8 +45,8 @@ Outcome runWithFault(const std::string& spec, double seconds = 1.2) {
 }
 
 void checkTimes(const Outcome& o, double timeout) {
-  INFO(o.record.kind << " on " << o.record.device << ": injected " << o.record.injected_at_s << " s, detected "
-                     << o.record.detected_at_s << " s");
+  INFO(o.record.kind << " on " << o.record.device << ": injected " << o.record.injected_at_s
+                     << " s, detected " << o.record.detected_at_s << " s");
   REQUIRE(o.record.injected_at_s >= 0.0);
   REQUIRE(o.record.detected_at_s >= o.record.injected_at_s);
   CHECK(o.record.detected_at_s - o.record.injected_at_s <= timeout + 1e-9);
@@ -123,7 +123,8 @@ TEST_CASE("loop: fault specs are checked", "[loop][faults]") {
 
 TEST_CASE("loop: safe stop: position drives hold with damping", "[loop][faults]") {
   LoopSetup s(looptest::sceneText("panda_door.yaml"), "panda_door.yaml");
-  loop::FaultInjector inj({loop::parseFaultRequest("heartbeat-loss@0.2:panda.panda_joint3")}, s.rig.get(), *s.ctrl, s.hw);
+  loop::FaultInjector inj({loop::parseFaultRequest("heartbeat-loss@0.2:panda.panda_joint3")}, s.rig.get(),
+                          *s.ctrl, s.hw);
   REQUIRE(s.boot());
   const double dt = s.sc.settings.dt;
   std::vector<double> v_stop;
@@ -150,7 +151,8 @@ TEST_CASE("loop: safe stop: quick_stop robots' drives enter Quick stop active", 
   const std::string text = loop::applySceneOverride(looptest::sceneText("panda_door.yaml"), "panda_door.yaml",
                                                     "hardware.robots[0].safe_stop=quick_stop");
   LoopSetup s(text, "panda_door.yaml");
-  loop::FaultInjector inj({loop::parseFaultRequest("nan-feedback@0.2:panda.panda_joint3")}, s.rig.get(), *s.ctrl, s.hw);
+  loop::FaultInjector inj({loop::parseFaultRequest("nan-feedback@0.2:panda.panda_joint3")}, s.rig.get(),
+                          *s.ctrl, s.hw);
   REQUIRE(s.boot());
   for (long k = 0; k < 400; ++k) {
     inj.beforeCycle(static_cast<double>(k) * s.sc.settings.dt, s.now);

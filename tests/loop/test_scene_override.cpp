@@ -2,8 +2,8 @@
 // the file; paths by index and by item name; errors name file, line and path.
 #include <catch2/catch.hpp>
 
-#include "loop/scene_override.hpp"
 #include <yaml-cpp/yaml.h>
+#include "loop/scene_override.hpp"
 
 #include "scene/scene_yaml.hpp"
 
@@ -11,13 +11,13 @@ using mrqp::loop::applySceneOverride;
 
 namespace {
 const char* kText =
-    "settings: {dt: 0.001, duration: 4.0}\n"    // 1
-    "tasks:\n"                                  // 2
-    "  - name: door_angle\n"                    // 3
-    "    weight: 100\n"                         // 4
-    "    target: [-0.25]\n"                     // 5
-    "  - name: posture\n"                       // 6
-    "    weight: 0.1   # small\n";              // 7
+    "settings: {dt: 0.001, duration: 4.0}\n"  // 1
+    "tasks:\n"                                // 2
+    "  - name: door_angle\n"                  // 3
+    "    weight: 100\n"                       // 4
+    "    target: [-0.25]\n"                   // 5
+    "  - name: posture\n"                     // 6
+    "    weight: 0.1   # small\n";            // 7
 
 std::string errorOf(const std::string& assignment) {
   try {

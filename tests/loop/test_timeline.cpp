@@ -29,7 +29,8 @@ TEST_CASE("loop: timeline errors name file, line and field", "[loop][timeline]")
   CHECK(errorOf("  - {at: 1, task: lever, weight: 2}\n") == at + ".task: unknown task 'lever'");
   CHECK(errorOf("  - {at: 1, contact: grip_top, active: true}\n") ==
         at + ".active: only 'active: false' (switching off) is supported");
-  CHECK(errorOf("  - {at: 1, task: door_angle}\n") == at + ": expected exactly one of 'weight', 'target' and 'active'");
+  CHECK(errorOf("  - {at: 1, task: door_angle}\n") ==
+        at + ": expected exactly one of 'weight', 'target' and 'active'");
   CHECK(errorOf("  - {at: -1, task: door_angle, weight: 1}\n") == at + ".at: expected a number >= 0, got -1");
 }
 

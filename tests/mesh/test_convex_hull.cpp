@@ -252,8 +252,7 @@ TEST_CASE("mesh hull: the hull is invariant under translation and scaling", "[me
   }
 }
 
-TEST_CASE("mesh hull: float-rounded cylinders with many coplanar points give a valid hull",
-          "[mesh][hull]") {
+TEST_CASE("mesh hull: float-rounded cylinders with many coplanar points give a valid hull", "[mesh][hull]") {
   // Like CAD meshes: two circles of 256 points in the planes z = 0 and z = h, rotated
   // and translated, coordinates rounded to float, plus the caps' centres and points
   // along the side lines.
@@ -359,8 +358,8 @@ TEST_CASE("mesh hull: degenerate inputs", "[mesh][hull]") {
   SECTION("non-finite points are ignored") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
-    std::vector<Vec3> pts{Vec3(nan, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, inf, 0),
-                          Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    std::vector<Vec3> pts{Vec3(nan, 0, 0), Vec3(0, 0, 0), Vec3(1, 0, 0),
+                          Vec3(0, inf, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
     const ConvexHull h = convexHull(pts);
     REQUIRE(h.vertices.size() == 4);
     REQUIRE(h.faces.size() == 4);

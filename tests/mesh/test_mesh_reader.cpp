@@ -89,8 +89,8 @@ std::string binaryStl(const std::string& header, const std::vector<Triangle>& tr
 }
 
 // A tetrahedron whose coordinates include 0.1f (not exact in binary).
-const std::vector<std::array<float, 3>> kTetra{{0.0F, 0.0F, 0.0F}, {0.1F, 0.0F, 0.0F},
-                                                {0.0F, 0.25F, 0.0F}, {0.0F, 0.0F, -2.5F}};
+const std::vector<std::array<float, 3>> kTetra{
+    {0.0F, 0.0F, 0.0F}, {0.1F, 0.0F, 0.0F}, {0.0F, 0.25F, 0.0F}, {0.0F, 0.0F, -2.5F}};
 
 std::vector<Triangle> tetraTriangles() {
   const auto& p = kTetra;
@@ -101,7 +101,8 @@ std::vector<Triangle> tetraTriangles() {
 // The distinct corners in order of first appearance in tetraTriangles().
 std::vector<Vec3> tetraVertices() {
   std::vector<Vec3> v;
-  for (const std::size_t i : {std::size_t{0}, std::size_t{2}, std::size_t{1}, std::size_t{3}}) v.emplace_back(kTetra[i][0], kTetra[i][1], kTetra[i][2]);
+  for (const std::size_t i : {std::size_t{0}, std::size_t{2}, std::size_t{1}, std::size_t{3}})
+    v.emplace_back(kTetra[i][0], kTetra[i][1], kTetra[i][2]);
   return v;
 }
 
@@ -144,8 +145,10 @@ class ScopedEnv {
     ::setenv(name, value.c_str(), 1);
   }
   ~ScopedEnv() {
-    if (old_) ::setenv(name_, old_->c_str(), 1);
-    else ::unsetenv(name_);
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
   }
   ScopedEnv(const ScopedEnv&) = delete;
   ScopedEnv& operator=(const ScopedEnv&) = delete;
@@ -159,7 +162,8 @@ class ScopedEnv {
 
 // ---- STL ------------------------------------------------------------------------------
 
-TEST_CASE("mesh reader: binary STL is read, including one whose header starts with \"solid\"", "[mesh][stl]") {
+TEST_CASE("mesh reader: binary STL is read, including one whose header starts with \"solid\"",
+          "[mesh][stl]") {
   TempDir dir;
   const std::string header = GENERATE(std::string("binary STL written by the mrqp tests"),
                                       std::string("solid tetra (a binary file despite its header)"));
@@ -195,8 +199,9 @@ TEST_CASE("mesh reader: ASCII STL is read", "[mesh][stl]") {
         text.replace(at, up.size(), up);
       }
     }
-    text += "solid second\n facet normal 0 0 1\n outer loop\n vertex 5 5 5\n vertex 6 5 5\n"
-            " vertex 5 6 5\n endloop\n endfacet\nendsolid second\n";
+    text +=
+        "solid second\n facet normal 0 0 1\n outer loop\n vertex 5 5 5\n vertex 6 5 5\n"
+        " vertex 5 6 5\n endloop\n endfacet\nendsolid second\n";
     const std::string path = dir.file("TETRA.STL");
     writeFile(path, text);
     const MeshReadResult r = readMeshVertices(path);
@@ -220,7 +225,8 @@ TEST_CASE("mesh reader: malformed and truncated STL files give clear errors", "[
     REQUIRE_FALSE(r.ok);
     REQUIRE(r.vertices.empty());
     REQUIRE_THAT(r.error, StartsWith("mesh '" + path + "': truncated binary STL"));
-    REQUIRE_THAT(r.error, Contains("declares 4 triangles, i.e. 84 + 50*4 = 284 bytes, but the file has 254 bytes"));
+    REQUIRE_THAT(r.error,
+                 Contains("declares 4 triangles, i.e. 84 + 50*4 = 284 bytes, but the file has 254 bytes"));
   }
   SECTION("binary with a \"solid\" header, cut") {
     writeFile(path, solidBinary.substr(0, 200));
@@ -239,7 +245,8 @@ TEST_CASE("mesh reader: malformed and truncated STL files give clear errors", "[
     writeFile(path, binary.substr(0, 50));
     const MeshReadResult r = readMeshVertices(path);
     REQUIRE_FALSE(r.ok);
-    REQUIRE(r.error == "mesh '" + path + "': truncated binary STL: 50 bytes, shorter than the 84-byte header");
+    REQUIRE(r.error ==
+            "mesh '" + path + "': truncated binary STL: 50 bytes, shorter than the 84-byte header");
   }
   SECTION("empty file") {
     writeFile(path, "");
@@ -274,8 +281,9 @@ TEST_CASE("mesh reader: malformed and truncated STL files give clear errors", "[
     REQUIRE_THAT(r.error, Contains("malformed ASCII STL: bad vertex coordinate 'zero' at line 5"));
   }
   SECTION("ASCII facet with two vertices") {
-    writeFile(path, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
-                    "endfacet\nendsolid x\n");
+    writeFile(path,
+              "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\n"
+              "endfacet\nendsolid x\n");
     const MeshReadResult r = readMeshVertices(path);
     REQUIRE_FALSE(r.ok);
     REQUIRE_THAT(r.error, Contains("malformed ASCII STL: facet loop with 2 vertices (expected 3) at line 6"));
@@ -316,7 +324,8 @@ TEST_CASE("mesh reader: malformed OBJ files give clear errors", "[mesh][obj]") {
   TempDir dir;
   const std::string few = dir.file("few.obj");
   writeFile(few, "v 1 2\n");
-  REQUIRE_THAT(readMeshVertices(few).error, Contains("malformed OBJ: vertex with fewer than 3 coordinates at line 1"));
+  REQUIRE_THAT(readMeshVertices(few).error,
+               Contains("malformed OBJ: vertex with fewer than 3 coordinates at line 1"));
   const std::string none = dir.file("none.obj");
   writeFile(none, "# only faces\nf 1 2 3\nvn 0 0 1\n");
   REQUIRE(readMeshVertices(none).error == "mesh '" + none + "': no vertices");
@@ -331,7 +340,7 @@ TEST_CASE("mesh reader: COLLADA positions are read with units and node transform
   // Millimetres to metres; the tetrahedron rotated +90 deg about z by <matrix> then raised by
   // 500 mm; the marker scaled by 2 then rotated +90 deg about z by <rotate>, through
   // <instance_node>; the unused geometry left out.
-  const std::vector<Vec3> want{{0, 0, 0.5}, {0, 1, 0.5}, {-1, 0, 0.5}, {0, 0, 1.5},
+  const std::vector<Vec3> want{{0, 0, 0.5},  {0, 1, 0.5},   {-1, 0, 0.5}, {0, 0, 1.5},
                                {0, 0.02, 0}, {-0.02, 0, 0}, {0, 0, 0.02}};
   REQUIRE(near(r.vertices, want, 1e-12));
 }
@@ -356,8 +365,9 @@ TEST_CASE("mesh reader: malformed COLLADA files give clear errors", "[mesh][dae]
     const std::string path = kData + "bad_count.dae";
     const MeshReadResult r = readMeshVertices(path);
     REQUIRE_FALSE(r.ok);
-    REQUIRE(r.error == "mesh '" + path +
-                           "': malformed COLLADA: <float_array id='short-pos-array'> declares 12 values but holds 8");
+    REQUIRE(r.error ==
+            "mesh '" + path +
+                "': malformed COLLADA: <float_array id='short-pos-array'> declares 12 values but holds 8");
   }
   TempDir dir;
   const std::string path = dir.file("x.dae");
@@ -371,16 +381,18 @@ TEST_CASE("mesh reader: malformed COLLADA files give clear errors", "[mesh][dae]
                  Contains("malformed XML: closing tag </COLLADA> does not match <asset> at line 3"));
   }
   SECTION("reference to a missing source") {
-    writeFile(path, "<COLLADA><library_geometries><geometry id='g'><mesh><vertices id='v'>"
-                    "<input semantic='POSITION' source='#nowhere'/></vertices></mesh></geometry>"
-                    "</library_geometries></COLLADA>");
+    writeFile(path,
+              "<COLLADA><library_geometries><geometry id='g'><mesh><vertices id='v'>"
+              "<input semantic='POSITION' source='#nowhere'/></vertices></mesh></geometry>"
+              "</library_geometries></COLLADA>");
     REQUIRE_THAT(readMeshVertices(path).error, Contains("malformed COLLADA") && Contains("'#nowhere'"));
   }
   SECTION("bad number") {
-    writeFile(path, "<COLLADA><library_geometries><geometry id='g'><mesh><source id='s'>"
-                    "<float_array id='a'>0 0 0 1 zero 0</float_array></source><vertices id='v'>"
-                    "<input semantic='POSITION' source='#s'/></vertices></mesh></geometry>"
-                    "</library_geometries></COLLADA>");
+    writeFile(path,
+              "<COLLADA><library_geometries><geometry id='g'><mesh><source id='s'>"
+              "<float_array id='a'>0 0 0 1 zero 0</float_array></source><vertices id='v'>"
+              "<input semantic='POSITION' source='#s'/></vertices></mesh></geometry>"
+              "</library_geometries></COLLADA>");
     REQUIRE_THAT(readMeshVertices(path).error,
                  Contains("malformed COLLADA: bad number 'zero' in <float_array id='a'>"));
   }
@@ -437,7 +449,8 @@ TEST_CASE("mesh reader: package:// and file:// URIs are resolved", "[mesh][uri]"
     REQUIRE(resolveMeshUri(uri, "", {"/nonexistent"}) == mesh);
   }
   SECTION("under AMENT_PREFIX_PATH/share") {
-    const std::string installed = (dir.path() / "install" / "share" / "my_pkg" / "meshes" / "link.STL").string();
+    const std::string installed =
+        (dir.path() / "install" / "share" / "my_pkg" / "meshes" / "link.STL").string();
     writeFile(installed, "solid\nendsolid\n");
     const ScopedEnv ros("ROS_PACKAGE_PATH", "");
     const ScopedEnv ament("AMENT_PREFIX_PATH", (dir.path() / "install").string());

@@ -12,12 +12,12 @@
 #include "door_model.hpp"
 #include "human_model.hpp"
 #include "jvrc1_model.hpp"
-#include "panda_model.hpp"
-#include "pendulum_model.hpp"
-#include "romeo_model.hpp"
 #include "model/model_traits.hpp"
 #include "model_files.hpp"
+#include "panda_model.hpp"
+#include "pendulum_model.hpp"
 #include "reference_model.hpp"
+#include "romeo_model.hpp"
 
 MRQP_MODEL_TRAITS(door_model);
 MRQP_MODEL_TRAITS(pendulum_model);
@@ -71,8 +71,8 @@ Eigen::Matrix<double, 6, 1> fdTwist(typename M::Data& d, int f, const Vector3d& 
     t.head<3>() = log3(Pm.R.transpose() * Pp.R) / (2 * h);
     // linear velocity expressed in the frame at the middle configuration
     const Eigen::Matrix3d Rmid = Pm.R * Eigen::AngleAxisd(0.5 * log3(Pm.R.transpose() * Pp.R).norm(),
-                                                         log3(Pm.R.transpose() * Pp.R).normalized())
-                                             .toRotationMatrix();
+                                                          log3(Pm.R.transpose() * Pp.R).normalized())
+                                            .toRotationMatrix();
     t.tail<3>() = Rmid.transpose() * (xp - xm) / (2 * h);
   }
   return t;
@@ -191,7 +191,8 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
       for (int k = 0; k < M::nv; ++k) Mdot += dM[ix(k)] * v(k);
       for (int i = 0; i < M::nv; ++i)
         for (int j = 0; j < M::nv; ++j)
-          for (int k = 0; k < M::nv; ++k) C(i, j) += 0.5 * (dM[ix(k)](i, j) + dM[ix(j)](i, k) - dM[ix(i)](j, k)) * v(k);
+          for (int k = 0; k < M::nv; ++k)
+            C(i, j) += 0.5 * (dM[ix(k)](i, j) + dM[ix(j)](i, k) - dM[ix(i)](j, k)) * v(k);
       typename M::TangentVector zero = M::TangentVector::Zero(), g;
       M::nle(*d, q, zero, g);
       const double cs = std::max(1.0, maxAbs(Mdot));
@@ -254,7 +255,9 @@ void checkModel(const char* file, bool floating, int expectedSingular) {
 
 }  // namespace
 
-TEST_CASE("generated door matches the reference", "[model_gen]") { checkModel<door_model_model>("door.urdf", false, 0); }
+TEST_CASE("generated door matches the reference", "[model_gen]") {
+  checkModel<door_model_model>("door.urdf", false, 0);
+}
 
 TEST_CASE("generated double pendulum (continuous joints) matches the reference", "[model_gen]") {
   checkModel<pendulum_model_model>("double-pendulum-continuous.urdf", false, 0);

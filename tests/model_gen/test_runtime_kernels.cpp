@@ -88,19 +88,21 @@ TEST_CASE("model kernels: pose composition equals Eigen's", "[model_gen][kernels
   CHECK((p - (pp + Rp * pl)).norm() < 1e-15);
 }
 
-TEST_CASE("model kernels: the body regressor times the parameters is I a + v x* I v", "[model_gen][kernels]") {
+TEST_CASE("model kernels: the body regressor times the parameters is I a + v x* I v",
+          "[model_gen][kernels]") {
   Rng rng;
   for (int k = 0; k < 20; ++k) {
     const double m = 1.0 + std::abs(rng());
     const Vector3d h = rng.vec3();
     Matrix3d I = Matrix3d::Random();
     I = I * I.transpose() + Matrix3d::Identity();  // symmetric
-    Eigen::Matrix<double, 6, 6> I6;                 // spatial inertia about the origin, (angular; linear)
+    Eigen::Matrix<double, 6, 6> I6;                // spatial inertia about the origin, (angular; linear)
     I6 << I, skew(h), skew(h).transpose(), m * Matrix3d::Identity();
     const Vector6d v = rng.vec6(), a = rng.vec6();
     const Vector6d Iv = I6 * v;
     Vector6d vxIv;  // v ×* (I v)
-    vxIv << v.head<3>().cross(Iv.head<3>()) + v.tail<3>().cross(Iv.tail<3>()), v.head<3>().cross(Iv.tail<3>());
+    vxIv << v.head<3>().cross(Iv.head<3>()) + v.tail<3>().cross(Iv.tail<3>()),
+        v.head<3>().cross(Iv.tail<3>());
     const Vector6d expected = I6 * a + vxIv;
 
     double A[6][10];

@@ -20,7 +20,9 @@ namespace {
 std::string badFile(const std::string& name) { return std::string(MRQP_TEST_DATA_DIR) + "/bad_urdf/" + name; }
 std::string modelFile(const std::string& name) { return mrqp::testing::modelUrdf(name); }
 
-mrqp::gen::KinematicTree loadBad(const std::string& name) { return mrqp::gen::loadUrdfFile(badFile(name), {}); }
+mrqp::gen::KinematicTree loadBad(const std::string& name) {
+  return mrqp::gen::loadUrdfFile(badFile(name), {});
+}
 
 bool anyWarningHas(const mrqp::gen::KinematicTree& tree, const std::string& a, const std::string& b) {
   for (const auto& w : tree.warnings)
@@ -32,9 +34,9 @@ bool anyWarningHas(const mrqp::gen::KinematicTree& tree, const std::string& a, c
 
 // The file must be rejected with a ModelError (not another exception type) whose text starts with the
 // file path and matches `matcher` (the element name && the reason).
-#define REQUIRE_BAD_URDF(file, matcher)                                  \
-  do {                                                                   \
-    REQUIRE_THROWS_AS(loadBad(file), ModelError);                        \
+#define REQUIRE_BAD_URDF(file, matcher)                                                          \
+  do {                                                                                           \
+    REQUIRE_THROWS_AS(loadBad(file), ModelError);                                                \
     REQUIRE_THROWS_WITH(loadBad(file), Catch::Matchers::StartsWith(badFile(file)) && (matcher)); \
   } while (false)
 
@@ -45,18 +47,18 @@ TEST_CASE("bad_urdf: no root link (the joints form a loop)", "[model_gen][bad_ur
 }
 
 TEST_CASE("bad_urdf: several root links", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("several_roots.urdf",
-                   Contains("URDF parse error:") && Contains("[base]") && Contains("[island]") &&
-                       Contains("Two root links found"));
+  REQUIRE_BAD_URDF("several_roots.urdf", Contains("URDF parse error:") && Contains("[base]") &&
+                                             Contains("[island]") && Contains("Two root links found"));
 }
 
 TEST_CASE("bad_urdf: a link with two parent joints", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("two_parents.urdf", Contains("joint 'j3'") && Contains("link 'c' already has parent joint 'j2'"));
+  REQUIRE_BAD_URDF("two_parents.urdf",
+                   Contains("joint 'j3'") && Contains("link 'c' already has parent joint 'j2'"));
 }
 
 TEST_CASE("bad_urdf: unknown joint type", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("unknown_joint_type.urdf",
-                   Contains("URDF parse error:") && Contains("Joint [j1]") && Contains("no known type [spherical]"));
+  REQUIRE_BAD_URDF("unknown_joint_type.urdf", Contains("URDF parse error:") && Contains("Joint [j1]") &&
+                                                  Contains("no known type [spherical]"));
 }
 
 TEST_CASE("bad_urdf: planar joint", "[model_gen][bad_urdf]") {
@@ -68,7 +70,8 @@ TEST_CASE("bad_urdf: zero axis on a revolute joint", "[model_gen][bad_urdf]") {
 }
 
 TEST_CASE("bad_urdf: lower limit above upper limit", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("lower_above_upper.urdf", Contains("joint 'j1'") && Contains("lower limit 1 > upper limit 0"));
+  REQUIRE_BAD_URDF("lower_above_upper.urdf",
+                   Contains("joint 'j1'") && Contains("lower limit 1 > upper limit 0"));
 }
 
 TEST_CASE("bad_urdf: negative mass", "[model_gen][bad_urdf]") {
@@ -76,7 +79,8 @@ TEST_CASE("bad_urdf: negative mass", "[model_gen][bad_urdf]") {
 }
 
 TEST_CASE("bad_urdf: NaN mass", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("nan_mass.urdf", Contains("URDF parse error:") && Contains("Link [b]") && Contains("mass [nan]"));
+  REQUIRE_BAD_URDF("nan_mass.urdf",
+                   Contains("URDF parse error:") && Contains("Link [b]") && Contains("mass [nan]"));
 }
 
 TEST_CASE("bad_urdf: inertia with a negative principal moment", "[model_gen][bad_urdf]") {
@@ -104,14 +108,14 @@ TEST_CASE("bad_urdf: NaN in a joint origin", "[model_gen][bad_urdf]") {
 TEST_CASE("bad_urdf: infinite inertia component", "[model_gen][bad_urdf]") {
   // urdfdom logs the bad <inertial> but still returns the model (with a zeroed inertial); the loader
   // must not accept it.
-  REQUIRE_BAD_URDF("inf_inertia.urdf",
-                   Contains("URDF parse error:") && Contains("Link [b]") && Contains("inertial") && Contains("ixx"));
+  REQUIRE_BAD_URDF("inf_inertia.urdf", Contains("URDF parse error:") && Contains("Link [b]") &&
+                                           Contains("inertial") && Contains("ixx"));
 }
 
 TEST_CASE("bad_urdf: infinite collision box size", "[model_gen][bad_urdf]") {
   // Same urdfdom behaviour as for the inertial: the collision would silently vanish.
-  REQUIRE_BAD_URDF("inf_collision_box.urdf",
-                   Contains("URDF parse error:") && Contains("Link [b]") && Contains("collision") && Contains("[inf]"));
+  REQUIRE_BAD_URDF("inf_collision_box.urdf", Contains("URDF parse error:") && Contains("Link [b]") &&
+                                                 Contains("collision") && Contains("[inf]"));
 }
 
 TEST_CASE("bad_urdf: infinite joint limit", "[model_gen][bad_urdf]") {
@@ -120,7 +124,8 @@ TEST_CASE("bad_urdf: infinite joint limit", "[model_gen][bad_urdf]") {
 }
 
 TEST_CASE("bad_urdf: mimic of an unknown joint", "[model_gen][bad_urdf]") {
-  REQUIRE_BAD_URDF("mimic_unknown.urdf", Contains("joint 'j2'") && Contains("mimic refers to unknown joint 'ghost'"));
+  REQUIRE_BAD_URDF("mimic_unknown.urdf",
+                   Contains("joint 'j2'") && Contains("mimic refers to unknown joint 'ghost'"));
 }
 
 TEST_CASE("bad_urdf: mimic cycle", "[model_gen][bad_urdf]") {

@@ -36,7 +36,8 @@ TEST_CASE("an unreadable mesh gives a named warning and no shape; primitives are
   const KinematicTree t = load(
       "<link name='a'><collision><geometry><mesh filename='package://nowhere/x.stl'/></geometry></collision>"
       "<collision><geometry><box size='1 2 3'/></geometry></collision></link>"
-      "<link name='b'><collision><geometry><cylinder radius='0.1' length='0.5'/></geometry></collision></link>"
+      "<link name='b'><collision><geometry><cylinder radius='0.1' "
+      "length='0.5'/></geometry></collision></link>"
       "<joint name='j' type='fixed'><parent link='a'/><child link='b'/><origin xyz='0 0 2'/></joint>");
   REQUIRE(t.shapes.size() == 2);
   CHECK(t.shapes[0].kind == ShapeKind::Box);

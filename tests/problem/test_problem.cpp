@@ -20,7 +20,8 @@ using mrqp::qp::QpStatus;
 
 namespace {
 
-std::unique_ptr<Entity> cube(const char* name, double m, double z, const Eigen::Vector3d& com = Eigen::Vector3d::Zero()) {
+std::unique_ptr<Entity> cube(const char* name, double m, double z,
+                             const Eigen::Vector3d& com = Eigen::Vector3d::Zero()) {
   auto e = std::make_unique<RigidObject>(name, m, com, Eigen::Matrix3d::Identity() * (m * 0.1 * 0.1 / 6.0));
   e->q()(2) = z;
   return e;
@@ -42,8 +43,9 @@ ContactDesc square(int entity, double half, double z) {
 }  // namespace
 
 TEST_CASE("Cone generators lie on the Coulomb cone, evenly around the normal", "[problem]") {
-  for (const Eigen::Vector3d& n : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(Eigen::Vector3d(1, 2, -3).normalized()),
-                                   Eigen::Vector3d(1, 0, 0)}) {
+  for (const Eigen::Vector3d& n :
+       {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(Eigen::Vector3d(1, 2, -3).normalized()),
+        Eigen::Vector3d(1, 0, 0)}) {
     for (double mu : {0.3, 1.0}) {
       Eigen::Vector3d sum = Eigen::Vector3d::Zero();
       for (int k = 0; k < 6; ++k) {
@@ -63,8 +65,8 @@ TEST_CASE("The support polygon is the convex hull with inward half-planes", "[pr
   for (double x : {-1.0, 1.0}) {
     for (double y : {-2.0, 2.0}) poly.add({x, y, 0.0});
   }
-  poly.add({0.2, 0.3, 0.0});   // interior
-  poly.add({1.0, 0.0, 0.0});   // on an edge
+  poly.add({0.2, 0.3, 0.0});  // interior
+  poly.add({1.0, 0.0, 0.0});  // on an edge
   poly.build();
   REQUIRE(poly.edges() == 4);
   CHECK(poly.margin({0.0, 0.0}) == Approx(1.0));

@@ -209,7 +209,7 @@ TEST_CASE("RigidObject integrates a non-unit quaternion as the generated model d
   std::mt19937 rng(7);
   for (int trial = 0; trial < 20; ++trial) {
     State s = randomState(rng);
-    s.q.segment<4>(3) *= 1.0 + 0.01 * (trial - 10);  // drifted off the unit sphere
+    s.q.segment<4>(3) *= 1.0 + 0.01 * (trial - 10);   // drifted off the unit sphere
     if (trial == 0) s.v.head<3>().setConstant(1e-7);  // the small-angle branch
     setState(obj, s.q, s.v);
     setState(ref, s.q, s.v);
@@ -268,8 +268,8 @@ TEST_CASE("RigidObject bias accelerations by finite differences", "[problem][rig
     CHECK(maxDiff(bias.tail<3>(), Eigen::Vector3d((pp - 2.0 * p0 + pm) / (H * H))) < 1e-5);
     // and the first difference of positions is the linear part of J v.
     setState(obj, s.q, s.v);
-    CHECK(maxDiff(pointTwist(obj, 0, point).tail<3>(),
-                  Eigen::Vector3d((p_plus - p_minus) / (2.0 * h))) < 1e-6);
+    CHECK(maxDiff(pointTwist(obj, 0, point).tail<3>(), Eigen::Vector3d((p_plus - p_minus) / (2.0 * h))) <
+          1e-6);
   }
 }
 
@@ -300,7 +300,8 @@ TEST_CASE("RigidObject rejects a non-physical body", "[problem][rigid_object]") 
   const Eigen::Matrix3d I = boxInertia();
 
   CHECK_NOTHROW(RigidObject("ok", kMass, kCom, I));
-  CHECK_NOTHROW(RigidObject("point_at_origin", 1.0, Eigen::Vector3d::Zero(), 1e-6 * Eigen::Matrix3d::Identity()));
+  CHECK_NOTHROW(
+      RigidObject("point_at_origin", 1.0, Eigen::Vector3d::Zero(), 1e-6 * Eigen::Matrix3d::Identity()));
 
   CHECK_THROWS_AS(RigidObject("m0", 0.0, kCom, I), std::invalid_argument);
   CHECK_THROWS_AS(RigidObject("mneg", -1.0, kCom, I), std::invalid_argument);

@@ -50,7 +50,8 @@ class PointMass final : public Entity {
     P.p = q_;
     return P;
   }
-  void frameJacobian(int /*frame*/, const Eigen::Vector3d& /*point*/, Eigen::Ref<Eigen::MatrixXd> J) const noexcept override {
+  void frameJacobian(int /*frame*/, const Eigen::Vector3d& /*point*/,
+                     Eigen::Ref<Eigen::MatrixXd> J) const noexcept override {
     J.setZero();
     J.bottomRows<3>().setIdentity();
   }
@@ -115,13 +116,15 @@ double trackingError(bool feed_forward) {
 /// q̈ of one coordinate of one entity set by an equality row: x_col = value.
 class FixAcceleration final : public Constraint {
  public:
-  FixAcceleration(int entity, int coordinate, double value) : entity_(entity), coord_(coordinate), value_(value) {}
+  FixAcceleration(int entity, int coordinate, double value)
+      : entity_(entity), coord_(coordinate), value_(value) {}
   const char* kind() const noexcept override { return "fix_acceleration"; }
   int inequalityRows() const noexcept override { return 0; }
   int equalityRows() const noexcept override { return 1; }
   const char* check(const MultiRobotProblem& p) const noexcept override {
-    return entity_ >= 0 && entity_ < p.entityCount() && coord_ >= 0 && coord_ < p.entity(entity_).nv() ? nullptr
-                                                                                                      : "no such coordinate";
+    return entity_ >= 0 && entity_ < p.entityCount() && coord_ >= 0 && coord_ < p.entity(entity_).nv()
+               ? nullptr
+               : "no such coordinate";
   }
   void update(const MultiRobotProblem& p, ConstraintRows& rows) noexcept override {
     rows.A(0, p.velocityOffset(entity_) + coord_) = 1.0;
@@ -139,8 +142,8 @@ TEST_CASE("Fed-forward references track a moving target; a set-point lags as the
           "[problem][task]") {
   const double lag = trackingError(false);
   const double tracked = trackingError(true);
-  const double closed_form = kA * kW * std::sqrt(kW * kW + kD * kD) /
-                             std::sqrt((kK - kW * kW) * (kK - kW * kW) + kD * kD * kW * kW);
+  const double closed_form =
+      kA * kW * std::sqrt(kW * kW + kD * kD) / std::sqrt((kK - kW * kW) * (kK - kW * kW) + kD * kD * kW * kW);
   INFO("set-point lag " << lag << " (closed form " << closed_form << "), fed forward " << tracked);
   CHECK(lag == Approx(closed_form).epsilon(0.01));
   CHECK(tracked < kA * kW * kDt);
@@ -148,8 +151,8 @@ TEST_CASE("Fed-forward references track a moving target; a set-point lags as the
 
 TEST_CASE("A task's references are checked for size and finiteness", "[problem][task]") {
   auto p = freeBody();
-  const int id = p->addTask(
-      std::make_unique<FramePositionTask>(0, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
+  const int id =
+      p->addTask(std::make_unique<FramePositionTask>(0, 0, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()));
   REQUIRE(id >= 0);
   CHECK(p->task(id).referenceRows() == 3);
   CHECK_FALSE(p->setTaskReference(id, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(3)));

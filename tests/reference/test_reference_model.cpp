@@ -1,7 +1,7 @@
 // Tests of the slow reference model against independent facts: closed-form pendulums, finite
 // differences of kinematics and energies, Jacobian-based mass matrix and gravity torques.
-#include "reference_model.hpp"
 #include "model_files.hpp"
+#include "reference_model.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -47,8 +47,8 @@ struct Case {
 // Every model file, fixed and floating base, plus the small models of tests/data/reference.
 std::vector<Case> allCases() {
   std::vector<std::string> files = modelFiles();
-  for (const char* extra : {"reference/pendulum.urdf", "reference/double_pendulum.urdf",
-                            "reference/mimic_chain.urdf"})
+  for (const char* extra :
+       {"reference/pendulum.urdf", "reference/double_pendulum.urdf", "reference/mimic_chain.urdf"})
     files.push_back(extra);
   std::vector<Case> cases;
   for (const std::string& file : files)
@@ -94,9 +94,9 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& w) {
 }
 
 // Velocity (omega; v) of a point of a frame by central differences along integrate(q, v, +-h).
-Vector6d fdPointVelocity(const ReferenceModel& m, const Eigen::VectorXd& q,
-                         const Eigen::VectorXd& v, const std::string& frame,
-                         const Eigen::Vector3d& point, bool world_aligned, double h) {
+Vector6d fdPointVelocity(const ReferenceModel& m, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                         const std::string& frame, const Eigen::Vector3d& point, bool world_aligned,
+                         double h) {
   const auto P0 = m.framePose(q, frame);
   const auto Pp = m.framePose(m.integrate(q, v, h), frame);
   const auto Pm = m.framePose(m.integrate(q, v, -h), frame);
@@ -413,8 +413,9 @@ TEST_CASE("bias accelerations are derivatives of J v", "[reference][models]") {
       const std::string& frame = m.frameNames()[f];
       const Eigen::Vector3d point = randomVector(3, rng, 0.2);
       for (bool world : {false, true}) {
-        const Vector6d fd = (m.frameJacobian(qp, frame, point, world) * v -
-                             m.frameJacobian(qm, frame, point, world) * v) / (2 * h);
+        const Vector6d fd =
+            (m.frameJacobian(qp, frame, point, world) * v - m.frameJacobian(qm, frame, point, world) * v) /
+            (2 * h);
         worst = std::max(worst, relErr(m.frameBiasAcceleration(q, v, frame, point, world), fd));
       }
     }
@@ -460,8 +461,8 @@ TEST_CASE("mass matrix: symmetric, linear part of RNEA, Jacobian form, kinetic e
     const auto energy = [&](const Eigen::VectorXd& qq, const Eigen::VectorXd& vv) {
       return 0.5 * vv.dot(m.massMatrix(qq) * vv);
     };
-    const double dT = (energy(m.integrate(q, v, h), v + h * a) -
-                       energy(m.integrate(q, v, -h), v - h * a)) / (2 * h);
+    const double dT =
+        (energy(m.integrate(q, v, h), v + h * a) - energy(m.integrate(q, v, -h), v - h * a)) / (2 * h);
     const double power = v.dot(m.rnea(q, v, a));
     CHECK(std::abs(dT - power) < 1e-7 * (1.0 + std::abs(power) + energy(q, v)));
   }
@@ -483,7 +484,8 @@ TEST_CASE("velocity terms follow the Lagrange / Euler-Poincare equations", "[ref
                           a = randomVector(m.nv(), rng);
     const double h = 1e-5;
     const Eigen::VectorXd dp = (m.massMatrix(m.integrate(q, v, h)) * (v + h * a) -
-                                m.massMatrix(m.integrate(q, v, -h)) * (v - h * a)) / (2 * h);
+                                m.massMatrix(m.integrate(q, v, -h)) * (v - h * a)) /
+                               (2 * h);
     Eigen::VectorXd expected = dp;
     const int first_joint = m.floatingBase() ? 6 : 0;
     for (int k = first_joint; k < m.nv(); ++k) {
@@ -560,8 +562,8 @@ TEST_CASE("floating-base joint block equals the fixed-base model", "[reference][
     Eigen::VectorXd v = Eigen::VectorXd::Zero(floating.nv()), a = v;
     v.tail(fixed.nv()) = vj;
     a.tail(fixed.nv()) = aj;
-    CHECK(relErr(floating.massMatrix(q).bottomRightCorner(fixed.nv(), fixed.nv()),
-                 fixed.massMatrix(qj)) < 1e-13);
+    CHECK(relErr(floating.massMatrix(q).bottomRightCorner(fixed.nv(), fixed.nv()), fixed.massMatrix(qj)) <
+          1e-13);
     CHECK(relErr(floating.rnea(q, v, a).tail(fixed.nv()), fixed.rnea(qj, vj, aj)) < 1e-13);
     for (const std::string& frame : fixed.frameNames()) {
       CHECK(relErr(floating.framePose(q, frame).R, fixed.framePose(qj, frame).R) < 1e-14);
@@ -589,8 +591,8 @@ TEST_CASE("centre of mass and inertial parameters", "[reference][models]") {
       moment += phi(i) * P.p + P.R * phi.segment<3>(i + 1);
       // Rotational inertia about the body origin is positive semi-definite.
       Eigen::Matrix3d I;
-      I << phi(i + 4), phi(i + 5), phi(i + 7), phi(i + 5), phi(i + 6), phi(i + 8), phi(i + 7),
-          phi(i + 8), phi(i + 9);
+      I << phi(i + 4), phi(i + 5), phi(i + 7), phi(i + 5), phi(i + 6), phi(i + 8), phi(i + 7), phi(i + 8),
+          phi(i + 9);
       CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues().minCoeff() > -1e-12);
     }
     CHECK(mass == Approx(m.totalMass()).epsilon(1e-14));

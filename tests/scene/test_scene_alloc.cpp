@@ -58,8 +58,14 @@ int run(mrqp::scene::Scene& scene, int cycles, const std::string& task, const st
 
 TEST_CASE("The counting allocator is in effect", "[scene][realtime]") {
   static void* volatile sink;  // keeps the compiler from eliding the pairs below
-  CHECK(allocationsIn([] { sink = ::operator new(8); ::operator delete(sink); }) == 1);
-  CHECK(allocationsIn([] { sink = std::malloc(64); std::free(sink); }) == 1);
+  CHECK(allocationsIn([] {
+          sink = ::operator new(8);
+          ::operator delete(sink);
+        }) == 1);
+  CHECK(allocationsIn([] {
+          sink = std::malloc(64);
+          std::free(sink);
+        }) == 1);
 }
 
 TEST_CASE("10,000 cycles of the JVRC-1 box scene allocate nothing", "[scene][realtime]") {

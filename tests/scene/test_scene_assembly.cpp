@@ -27,8 +27,8 @@ constexpr double kRelTol = 1e-12;
 double worstDifference(const Eigen::MatrixXd& got, const Eigen::MatrixXd& want, std::string& where,
                        const std::string& what) {
   if (got.rows() != want.rows() || got.cols() != want.cols()) {
-    where = what + ": size " + std::to_string(got.rows()) + "×" + std::to_string(got.cols()) + " instead of " +
-            std::to_string(want.rows()) + "×" + std::to_string(want.cols());
+    where = what + ": size " + std::to_string(got.rows()) + "×" + std::to_string(got.cols()) +
+            " instead of " + std::to_string(want.rows()) + "×" + std::to_string(want.cols());
     return INFINITY;
   }
   double scale = 0.0;

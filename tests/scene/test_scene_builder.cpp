@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "scene/builtin_models.hpp"
 #include "problem/tasks/frame_position_task.hpp"
+#include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 
 using Catch::Matchers::Contains;
@@ -32,16 +32,17 @@ TEST_CASE("Scene names are checked against the models", "[scene]") {
                         Contains("panda_joint4"));
   CHECK_THROWS_WITH(build("entities:\n  - name: arm\n    model: panda\n    q: {panda_joint4: 1.0}\n"),
                     StartsWith("s.yaml:2: entities[0].q.panda_joint4: 1 is outside the joint's range"));
-  CHECK_THROWS_WITH(build(std::string(kArm) +
-                          "tasks:\n  - name: t\n    type: frame_position\n    entity: arm\n    frame: hand\n"),
-                    StartsWith("s.yaml:5: tasks[0].frame: entity 'arm' has no frame 'hand'") &&
-                        Contains("panda_hand_tcp"));
+  CHECK_THROWS_WITH(
+      build(std::string(kArm) +
+            "tasks:\n  - name: t\n    type: frame_position\n    entity: arm\n    frame: hand\n"),
+      StartsWith("s.yaml:5: tasks[0].frame: entity 'arm' has no frame 'hand'") && Contains("panda_hand_tcp"));
   CHECK_THROWS_WITH(build(std::string(kArm) + "tasks:\n  - name: t\n    type: posture\n    entity: robot\n"),
                     StartsWith("s.yaml:5: tasks[0].entity: unknown entity 'robot' (entities: arm)"));
-  CHECK_THROWS_WITH(build(std::string(kArm) +
-                          "contacts:\n  - name: c\n    entity: arm\n    frame: panda_hand\n    other: ground\n"
-                          "    points: [[0, 0, 0], [0.1, 0, 0]]\n"),
-                    StartsWith("s.yaml:5: contacts[0]: a surface contact needs at least 3 points"));
+  CHECK_THROWS_WITH(
+      build(std::string(kArm) +
+            "contacts:\n  - name: c\n    entity: arm\n    frame: panda_hand\n    other: ground\n"
+            "    points: [[0, 0, 0], [0.1, 0, 0]]\n"),
+      StartsWith("s.yaml:5: contacts[0]: a surface contact needs at least 3 points"));
 }
 
 TEST_CASE("A scene builds with its defaults: targets at the start state", "[scene]") {
@@ -128,6 +129,6 @@ TEST_CASE("A task declared inactive is built, left out of the cost and restored 
   CHECK((H_off - 1e-6 * Eigen::MatrixXd::Identity(H_off.rows(), H_off.cols())).norm() < 1e-15);
   REQUIRE(p.restoreTask(id));
   p.update();
-  CHECK(p.taskError(id).norm() > 0.01);  // the target is away from the hand
-  CHECK((p.qp().H() - H_off).norm() > 1.0);   // the task's 100·JᵀJ is in the cost
+  CHECK(p.taskError(id).norm() > 0.01);      // the target is away from the hand
+  CHECK((p.qp().H() - H_off).norm() > 1.0);  // the task's 100·JᵀJ is in the cost
 }

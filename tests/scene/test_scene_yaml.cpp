@@ -34,8 +34,7 @@ std::string errorOfText(const std::string& text) {
 }
 
 /// The error of bad/<name> starts with "FILE:LINE: FIELD: " and contains `part`.
-void expectError(const std::string& name, int line, const std::string& field,
-                 const std::string& part) {
+void expectError(const std::string& name, int line, const std::string& field, const std::string& part) {
   const std::string path = kScenes + "bad/" + name;
   const std::string prefix = path + ":" + std::to_string(line) + ": " + field + ": ";
   const std::string what = errorOf(path);
@@ -162,8 +161,7 @@ TEST_CASE("good_full.yaml: tasks", "[scene]") {
   CHECK_FALSE(posture.damping.has_value());
   CHECK(posture.dims.empty());
   CHECK_FALSE(posture.target.has_value());
-  CHECK(posture.posture_target ==
-        std::map<std::string, double>{{"NECK_Y", 0.2}, {"R_ELBOW_P", -1.0}});
+  CHECK(posture.posture_target == std::map<std::string, double>{{"NECK_Y", 0.2}, {"R_ELBOW_P", -1.0}});
   CHECK(posture.active);
   CHECK(posture.source.line == 54);
 
@@ -347,43 +345,35 @@ TEST_CASE("every file under bad/ is rejected with FILE:LINE", "[scene]") {
 }
 
 TEST_CASE("bad scene: task weight not number", "[scene]") {
-  expectError("task_weight_not_number.yaml", 10, "tasks[2].weight",
-              "expected a number >= 0, got \"abc\"");
+  expectError("task_weight_not_number.yaml", 10, "tasks[2].weight", "expected a number >= 0, got \"abc\"");
 }
 
 TEST_CASE("bad scene: entity missing model", "[scene]") {
-  expectError("entity_missing_model.yaml", 3, "entities[0]",
-              "missing required field 'model'");
+  expectError("entity_missing_model.yaml", 3, "entities[0]", "missing required field 'model'");
 }
 
 TEST_CASE("bad scene: task unknown key", "[scene]") {
-  expectError("task_unknown_key.yaml", 8, "tasks[0].wieght",
-              "unknown key");
+  expectError("task_unknown_key.yaml", 8, "tasks[0].wieght", "unknown key");
 }
 
 TEST_CASE("bad scene: top unknown key", "[scene]") {
-  expectError("top_unknown_key.yaml", 4, "constraints",
-              "unknown key");
+  expectError("top_unknown_key.yaml", 4, "constraints", "unknown key");
 }
 
 TEST_CASE("bad scene: number not finite", "[scene]") {
-  expectError("number_not_finite.yaml", 6, "entities[0].pose.xyz[2]",
-              "expected a finite number, got .nan");
+  expectError("number_not_finite.yaml", 6, "entities[0].pose.xyz[2]", "expected a finite number, got .nan");
 }
 
 TEST_CASE("bad scene: task negative stiffness", "[scene]") {
-  expectError("task_negative_stiffness.yaml", 5, "tasks[0].stiffness",
-              "expected a number >= 0, got -1");
+  expectError("task_negative_stiffness.yaml", 5, "tasks[0].stiffness", "expected a number >= 0, got -1");
 }
 
 TEST_CASE("bad scene: task negative damping", "[scene]") {
-  expectError("task_negative_damping.yaml", 8, "tasks[0].damping",
-              "expected a number >= 0, got -0.5");
+  expectError("task_negative_damping.yaml", 8, "tasks[0].damping", "expected a number >= 0, got -0.5");
 }
 
 TEST_CASE("bad scene: contact friction zero", "[scene]") {
-  expectError("contact_friction_zero.yaml", 10, "contacts[0].friction",
-              "expected a number > 0, got 0");
+  expectError("contact_friction_zero.yaml", 10, "contacts[0].friction", "expected a number > 0, got 0");
 }
 
 TEST_CASE("bad scene: contact generators range", "[scene]") {
@@ -407,8 +397,7 @@ TEST_CASE("bad scene: contact point length", "[scene]") {
 }
 
 TEST_CASE("bad scene: contact zero normal", "[scene]") {
-  expectError("contact_zero_normal.yaml", 10, "contacts[0].normal",
-              "expected a non-zero vector");
+  expectError("contact_zero_normal.yaml", 10, "contacts[0].normal", "expected a non-zero vector");
 }
 
 TEST_CASE("bad scene: contact other unknown", "[scene]") {
@@ -417,13 +406,11 @@ TEST_CASE("bad scene: contact other unknown", "[scene]") {
 }
 
 TEST_CASE("bad scene: contact other missing frame", "[scene]") {
-  expectError("contact_other_missing_frame.yaml", 8, "contacts[0].other",
-              "missing required field 'frame'");
+  expectError("contact_other_missing_frame.yaml", 8, "contacts[0].other", "missing required field 'frame'");
 }
 
 TEST_CASE("bad scene: contact missing name", "[scene]") {
-  expectError("contact_missing_name.yaml", 5, "contacts[0]",
-              "missing required field 'name'");
+  expectError("contact_missing_name.yaml", 5, "contacts[0]", "missing required field 'name'");
 }
 
 TEST_CASE("bad scene: contact duplicate name", "[scene]") {
@@ -432,13 +419,11 @@ TEST_CASE("bad scene: contact duplicate name", "[scene]") {
 }
 
 TEST_CASE("bad scene: task dims length", "[scene]") {
-  expectError("task_dims_length.yaml", 8, "tasks[0].dims",
-              "expected 3 entries for a com task, got 2");
+  expectError("task_dims_length.yaml", 8, "tasks[0].dims", "expected 3 entries for a com task, got 2");
 }
 
 TEST_CASE("bad scene: task dims value", "[scene]") {
-  expectError("task_dims_value.yaml", 11, "tasks[0].dims[1]",
-              "expected 0 or 1, got 2");
+  expectError("task_dims_value.yaml", 11, "tasks[0].dims[1]", "expected 0 or 1, got 2");
 }
 
 TEST_CASE("bad scene: task target length", "[scene]") {
@@ -447,28 +432,23 @@ TEST_CASE("bad scene: task target length", "[scene]") {
 }
 
 TEST_CASE("bad scene: task posture target list", "[scene]") {
-  expectError("task_posture_target_list.yaml", 8, "tasks[0].target",
-              "expected a map, got a list of 2");
+  expectError("task_posture_target_list.yaml", 8, "tasks[0].target", "expected a map, got a list of 2");
 }
 
 TEST_CASE("bad scene: task unknown type", "[scene]") {
-  expectError("task_unknown_type.yaml", 6, "tasks[0].type",
-              "expected posture, com, frame_position");
+  expectError("task_unknown_type.yaml", 6, "tasks[0].type", "expected posture, com, frame_position");
 }
 
 TEST_CASE("bad scene: task key not used", "[scene]") {
-  expectError("task_key_not_used.yaml", 8, "tasks[0].frame",
-              "not used by a com task");
+  expectError("task_key_not_used.yaml", 8, "tasks[0].frame", "not used by a com task");
 }
 
 TEST_CASE("bad scene: task missing name", "[scene]") {
-  expectError("task_missing_name.yaml", 5, "tasks[0]",
-              "missing required field 'name'");
+  expectError("task_missing_name.yaml", 5, "tasks[0]", "missing required field 'name'");
 }
 
 TEST_CASE("bad scene: task duplicate name", "[scene]") {
-  expectError("task_duplicate_name.yaml", 8, "tasks[1].name",
-              "duplicate task name 'com' (first at line 5)");
+  expectError("task_duplicate_name.yaml", 8, "tasks[1].name", "duplicate task name 'com' (first at line 5)");
 }
 
 TEST_CASE("bad scene: entity duplicate name", "[scene]") {
@@ -487,13 +467,11 @@ TEST_CASE("bad scene: entity spring negative damping", "[scene]") {
 }
 
 TEST_CASE("bad scene: object mass zero", "[scene]") {
-  expectError("object_mass_zero.yaml", 4, "entities[0].mass",
-              "expected a number > 0, got 0");
+  expectError("object_mass_zero.yaml", 4, "entities[0].mass", "expected a number > 0, got 0");
 }
 
 TEST_CASE("bad scene: object inertia not pd", "[scene]") {
-  expectError("object_inertia_not_pd.yaml", 5, "entities[0].inertia",
-              "not positive definite");
+  expectError("object_inertia_not_pd.yaml", 5, "entities[0].inertia", "not positive definite");
 }
 
 TEST_CASE("bad scene: object inertia length", "[scene]") {
@@ -502,23 +480,19 @@ TEST_CASE("bad scene: object inertia length", "[scene]") {
 }
 
 TEST_CASE("bad scene: object joint key", "[scene]") {
-  expectError("object_joint_key.yaml", 6, "entities[0].q",
-              "not used by a rigid_object");
+  expectError("object_joint_key.yaml", 6, "entities[0].q", "not used by a rigid_object");
 }
 
 TEST_CASE("bad scene: settings dt zero", "[scene]") {
-  expectError("settings_dt_zero.yaml", 3, "settings.dt",
-              "expected a number > 0, got 0");
+  expectError("settings_dt_zero.yaml", 3, "settings.dt", "expected a number > 0, got 0");
 }
 
 TEST_CASE("bad scene: settings duration negative", "[scene]") {
-  expectError("settings_duration_negative.yaml", 1, "settings.duration",
-              "expected a number > 0, got -4");
+  expectError("settings_duration_negative.yaml", 1, "settings.duration", "expected a number > 0, got -4");
 }
 
 TEST_CASE("bad scene: settings capacity zero", "[scene]") {
-  expectError("settings_capacity_zero.yaml", 2, "settings.max_contacts",
-              "expected an integer >= 1, got 0");
+  expectError("settings_capacity_zero.yaml", 2, "settings.max_contacts", "expected an integer >= 1, got 0");
 }
 
 TEST_CASE("bad scene: settings gravity length", "[scene]") {
@@ -532,8 +506,7 @@ TEST_CASE("bad scene: com damper order", "[scene]") {
 }
 
 TEST_CASE("bad scene: com damper damping zero", "[scene]") {
-  expectError("com_damper_damping_zero.yaml", 6, "com_dampers[0].damping",
-              "expected a number > 0, got 0");
+  expectError("com_damper_damping_zero.yaml", 6, "com_dampers[0].damping", "expected a number > 0, got 0");
 }
 
 TEST_CASE("bad scene: joint inequality no terms", "[scene]") {
@@ -542,11 +515,9 @@ TEST_CASE("bad scene: joint inequality no terms", "[scene]") {
 }
 
 TEST_CASE("bad scene: entities missing", "[scene]") {
-  expectError("entities_missing.yaml", 1, "(top level)",
-              "missing required field 'entities'");
+  expectError("entities_missing.yaml", 1, "(top level)", "missing required field 'entities'");
 }
 
 TEST_CASE("bad scene: duplicate key", "[scene]") {
-  expectError("duplicate_key.yaml", 4, "entities[0].model",
-              "duplicate key (first at line 3)");
+  expectError("duplicate_key.yaml", 4, "entities[0].model", "duplicate key (first at line 3)");
 }

@@ -66,7 +66,9 @@ TEST_CASE("JVRC-1 carries a box to its target with a task on the box pose only",
     REQUIRE(p.solve() == QpStatus::Optimal);
     worst_eom = std::max(worst_eom, mrqp::testing::eomResidual(p));
     worst_cone = std::max(worst_cone, mrqp::testing::coneViolation(p));
-    worst_margin = std::min(worst_margin, dynamic_cast<const ComDamper&>(p.constraint(0)).polygon().margin(p.entity(jvrc).com().head<2>()));
+    worst_margin = std::min(
+        worst_margin,
+        dynamic_cast<const ComDamper&>(p.constraint(0)).polygon().margin(p.entity(jvrc).com().head<2>()));
     // Equal and opposite by construction: the robot's hand gets −w at the very same point, which
     // eomResidual checks against the robot's own dynamics; here the box's net wrench is compared
     // with what its Newton–Euler equation needs.
@@ -87,8 +89,8 @@ TEST_CASE("JVRC-1 carries a box to its target with a task on the box pose only",
   const double pos_err = (P.p - target_p).norm();
   const double rot_err = Eigen::AngleAxisd(P.R * target_R.transpose()).angle();
   INFO("box position error " << pos_err << " m, orientation error " << rot_err << " rad");
-  INFO("EoM residual " << worst_eom << ", cone violation " << worst_cone << " N, CoM margin "
-                       << worst_margin << " m, box wrench mismatch " << worst_pair);
+  INFO("EoM residual " << worst_eom << ", cone violation " << worst_cone << " N, CoM margin " << worst_margin
+                       << " m, box wrench mismatch " << worst_pair);
   CHECK(pos_err < 1e-3);
   CHECK(rot_err < 1e-3);
   CHECK(worst_eom < 1e-9);
@@ -130,8 +132,8 @@ TEST_CASE("A Panda opens a latched door with a task on the door angle only", "[s
     min_handle = std::min(min_handle, qh);
     worst_latch = std::max(worst_latch, -qd + qh - 0.01);  // latch: −q_door + q_handle ≤ 0.01
   }
-  INFO("door " << d.q()(hinge) << " rad (target " << target << "), handle min " << min_handle
-               << ", latch " << worst_latch << ", EoM " << worst_eom << ", cone " << worst_cone);
+  INFO("door " << d.q()(hinge) << " rad (target " << target << "), handle min " << min_handle << ", latch "
+               << worst_latch << ", EoM " << worst_eom << ", cone " << worst_cone);
   CHECK(std::abs(d.q()(hinge) - target) < 5e-3);
   CHECK(min_handle < target + 0.01);  // the handle was turned as far as the latch needs
   CHECK(worst_latch < 1e-3);

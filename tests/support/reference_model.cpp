@@ -1,10 +1,10 @@
 #include "reference_model.hpp"
 
-#include <Eigen/Geometry>
 #include <urdf_model/joint.h>
 #include <urdf_model/link.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -68,8 +68,7 @@ Vector6d crossForce(const Vector6d& m, const Vector6d& f) {
 
 // Spatial inertia (mass m, CoM c, rotational inertia Ic about the CoM) times a motion, all in
 // the same frame: f = m (v + w x c), n = Ic w + c x f.
-Vector6d inertiaTimes(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic,
-                      const Vector6d& motion) {
+Vector6d inertiaTimes(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic, const Vector6d& motion) {
   const Eigen::Vector3d w = angular(motion), v = linear(motion);
   const Eigen::Vector3d f = m * (v + w.cross(c));
   const Eigen::Vector3d n = Ic * w + c.cross(f);
@@ -96,13 +95,20 @@ bool finite(const Pose& p) { return p.R.allFinite() && p.p.allFinite(); }
 
 const char* typeName(int type) {
   switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FIXED: return "fixed";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    default: return "unknown";
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    default:
+      return "unknown";
   }
 }
 
@@ -147,13 +153,19 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
       if (!finite(link.origin))
         throw std::runtime_error("ReferenceModel: joint '" + uj.name + "': origin is not finite");
       switch (uj.type) {
-        case urdf::Joint::FIXED: link.type = JointType::Fixed; break;
+        case urdf::Joint::FIXED:
+          link.type = JointType::Fixed;
+          break;
         case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS: link.type = JointType::Revolute; break;
-        case urdf::Joint::PRISMATIC: link.type = JointType::Prismatic; break;
+        case urdf::Joint::CONTINUOUS:
+          link.type = JointType::Revolute;
+          break;
+        case urdf::Joint::PRISMATIC:
+          link.type = JointType::Prismatic;
+          break;
         default:
-          throw std::runtime_error("ReferenceModel: joint '" + uj.name + "': type " +
-                                   typeName(uj.type) + " is not supported");
+          throw std::runtime_error("ReferenceModel: joint '" + uj.name + "': type " + typeName(uj.type) +
+                                   " is not supported");
       }
       if (link.type != JointType::Fixed) {
         const Eigen::Vector3d axis(uj.axis.x, uj.axis.y, uj.axis.z);
@@ -173,8 +185,7 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
           in.ixz, in.iyz, in.izz;
       if (!std::isfinite(in.mass) || !I.allFinite() || !finite(frame))
         throw std::runtime_error("ReferenceModel: link '" + ul.name + "': inertial is not finite");
-      if (in.mass < 0.0)
-        throw std::runtime_error("ReferenceModel: link '" + ul.name + "': negative mass");
+      if (in.mass < 0.0) throw std::runtime_error("ReferenceModel: link '" + ul.name + "': negative mass");
       link.mass = in.mass;
       link.com = frame.p;
       link.inertia_com = frame.R * I * frame.R.transpose();
@@ -184,15 +195,13 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
 
     std::vector<urdf::JointSharedPtr> children = ul.child_joints;
     std::sort(children.begin(), children.end(),
-              [](const urdf::JointSharedPtr& a, const urdf::JointSharedPtr& b) {
-                return a->name < b->name;
-              });
+              [](const urdf::JointSharedPtr& a, const urdf::JointSharedPtr& b) { return a->name < b->name; });
     // Push in reverse so that the lexicographically first child is popped first.
     for (auto it = children.rbegin(); it != children.rend(); ++it) {
       const urdf::LinkConstSharedPtr child = urdf->getLink((*it)->child_link_name);
       if (!child)
-        throw std::runtime_error("ReferenceModel: joint '" + (*it)->name +
-                                 "': unknown child link '" + (*it)->child_link_name + "'");
+        throw std::runtime_error("ReferenceModel: joint '" + (*it)->name + "': unknown child link '" +
+                                 (*it)->child_link_name + "'");
       stack.push_back({child, index});
     }
   }
@@ -231,14 +240,14 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
       const urdf::JointConstSharedPtr joint = urdf->getJoint(current);
       if (!joint->mimic) break;
       if (!seen.insert(current).second)
-        throw std::runtime_error("ReferenceModel: joint '" + name + "': mimic cycle through '" +
-                                 current + "'");
+        throw std::runtime_error("ReferenceModel: joint '" + name + "': mimic cycle through '" + current +
+                                 "'");
       const urdf::JointMimic& mimic = *joint->mimic;
       if (!std::isfinite(mimic.multiplier) || !std::isfinite(mimic.offset))
         throw std::runtime_error("ReferenceModel: joint '" + current + "': mimic is not finite");
       if (!urdf->getJoint(mimic.joint_name))
-        throw std::runtime_error("ReferenceModel: joint '" + current +
-                                 "': mimic refers to unknown joint '" + mimic.joint_name + "'");
+        throw std::runtime_error("ReferenceModel: joint '" + current + "': mimic refers to unknown joint '" +
+                                 mimic.joint_name + "'");
       if (full_index_of.count(mimic.joint_name) == 0)
         throw std::runtime_error("ReferenceModel: joint '" + current + "': mimic refers to joint '" +
                                  mimic.joint_name + "' which has no coordinate");
@@ -262,8 +271,7 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
     const urdf::JointLimits& lim = *joint->limits;
     if (joint->type != urdf::Joint::CONTINUOUS) {
       if (lim.lower > lim.upper)
-        throw std::runtime_error("ReferenceModel: joint '" + joint->name +
-                                 "': lower limit > upper limit");
+        throw std::runtime_error("ReferenceModel: joint '" + joint->name + "': lower limit > upper limit");
       model.joint_lower_(j) = lim.lower;
       model.joint_upper_(j) = lim.upper;
     }
@@ -293,9 +301,7 @@ ReferenceModel ReferenceModel::fromUrdf(const std::string& path, bool floating_b
 // ---------------------------------------------------------------------------------------------
 
 int ReferenceModel::baseDofs() const { return floating_base_ ? 6 : 0; }
-int ReferenceModel::nq() const {
-  return (floating_base_ ? 7 : 0) + static_cast<int>(joint_names_.size());
-}
+int ReferenceModel::nq() const { return (floating_base_ ? 7 : 0) + static_cast<int>(joint_names_.size()); }
 int ReferenceModel::nv() const { return baseDofs() + static_cast<int>(joint_names_.size()); }
 bool ReferenceModel::floatingBase() const { return floating_base_; }
 const std::vector<std::string>& ReferenceModel::jointNames() const { return joint_names_; }
@@ -469,8 +475,7 @@ std::vector<ReferenceModel::Pose> ReferenceModel::worldPoses(const Eigen::Vector
   return world;
 }
 
-ReferenceModel::Motion ReferenceModel::propagate(const Eigen::VectorXd& q,
-                                                 const Eigen::VectorXd& v,
+ReferenceModel::Motion ReferenceModel::propagate(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                                  const Eigen::VectorXd& a,
                                                  const Eigen::Vector3d& gravity_used) const {
   checkConfig(q);
@@ -508,14 +513,12 @@ ReferenceModel::Motion ReferenceModel::propagate(const Eigen::VectorXd& q,
     const double qdd = link.full_index >= 0 ? qdd_full(link.full_index) : 0.0;
     const Vector6d vJ = S * qd;
     m.velocity[i] = motionToChild(local, m.velocity[p]) + vJ;
-    m.acceleration[i] =
-        motionToChild(local, m.acceleration[p]) + S * qdd + crossMotion(m.velocity[i], vJ);
+    m.acceleration[i] = motionToChild(local, m.acceleration[p]) + S * qdd + crossMotion(m.velocity[i], vJ);
   }
   return m;
 }
 
-ReferenceModel::Pose ReferenceModel::framePose(const Eigen::VectorXd& q,
-                                               const std::string& frame) const {
+ReferenceModel::Pose ReferenceModel::framePose(const Eigen::VectorXd& q, const std::string& frame) const {
   checkConfig(q);
   const int index = requireFrame(frame);
   return worldPoses(q)[static_cast<std::size_t>(index)];
@@ -541,15 +544,17 @@ Eigen::MatrixXd ReferenceModel::frameJacobian(const Eigen::VectorXd& q, const st
   return J;
 }
 
-ReferenceModel::Vector6d ReferenceModel::frameBiasAcceleration(
-    const Eigen::VectorXd& q, const Eigen::VectorXd& v, const std::string& frame,
-    const Eigen::Vector3d& point_in_frame, bool world_aligned) const {
+ReferenceModel::Vector6d ReferenceModel::frameBiasAcceleration(const Eigen::VectorXd& q,
+                                                               const Eigen::VectorXd& v,
+                                                               const std::string& frame,
+                                                               const Eigen::Vector3d& point_in_frame,
+                                                               bool world_aligned) const {
   const std::size_t index = static_cast<std::size_t>(requireFrame(frame));
   const Motion m = propagate(q, v, Eigen::VectorXd::Zero(nv()), Eigen::Vector3d::Zero());
   // Body twist (w; v_o) and its time derivative (dw; dv_o), both in link coordinates.
   const Eigen::Vector3d w = angular(m.velocity[index]);
   const Eigen::Vector3d dw = angular(m.acceleration[index]);
-  const Eigen::Vector3d u = linear(m.velocity[index]) + w.cross(point_in_frame);     // point vel.
+  const Eigen::Vector3d u = linear(m.velocity[index]) + w.cross(point_in_frame);        // point vel.
   const Eigen::Vector3d du = linear(m.acceleration[index]) + dw.cross(point_in_frame);  // d/dt u
   if (!world_aligned) return spatial(dw, du);
   // World aligned: J v = (R w; R u), d/dt = (R dw + R (w x w); R (du + w x u)).
@@ -603,15 +608,13 @@ Eigen::VectorXd ReferenceModel::inertialParameters() const {
     mass[b] += link.mass;
     first_moment[b] += link.mass * c;
     // Parallel axis theorem: about the body origin, I = Ic + m (|c|^2 1 - c c^T).
-    inertia_origin[b] +=
-        Ic + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    inertia_origin[b] += Ic + link.mass * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   }
   Eigen::VectorXd phi(10 * static_cast<Eigen::Index>(nbodies));
   for (std::size_t b = 0; b < nbodies; ++b) {
     const Eigen::Matrix3d& I = inertia_origin[b];
-    phi.segment<10>(10 * static_cast<Eigen::Index>(b)) << mass[b], first_moment[b].x(),
-        first_moment[b].y(), first_moment[b].z(), I(0, 0), I(0, 1), I(1, 1), I(0, 2), I(1, 2),
-        I(2, 2);
+    phi.segment<10>(10 * static_cast<Eigen::Index>(b)) << mass[b], first_moment[b].x(), first_moment[b].y(),
+        first_moment[b].z(), I(0, 0), I(0, 1), I(1, 1), I(0, 2), I(1, 2), I(2, 2);
   }
   return phi;
 }
@@ -620,10 +623,8 @@ Eigen::VectorXd ReferenceModel::inertialParameters() const {
 // Dynamics
 // ---------------------------------------------------------------------------------------------
 
-Eigen::VectorXd ReferenceModel::rneaWithGravity(const Eigen::VectorXd& q,
-                                                const Eigen::VectorXd& v,
-                                                const Eigen::VectorXd& a,
-                                                const Eigen::Vector3d& g) const {
+Eigen::VectorXd ReferenceModel::rneaWithGravity(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                                const Eigen::VectorXd& a, const Eigen::Vector3d& g) const {
   const Motion m = propagate(q, v, a, g);
   const Eigen::VectorXd q_full = fullJointPositions(q);
 
@@ -640,8 +641,7 @@ Eigen::VectorXd ReferenceModel::rneaWithGravity(const Eigen::VectorXd& q,
   Eigen::VectorXd tau_full = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(full_joint_names_.size()));
   for (std::size_t k = links_.size(); k-- > 0;) {
     const Link& link = links_[k];
-    if (link.full_index >= 0)
-      tau_full(link.full_index) = motionSubspace(static_cast<int>(k)).dot(force[k]);
+    if (link.full_index >= 0) tau_full(link.full_index) = motionSubspace(static_cast<int>(k)).dot(force[k]);
     if (link.parent >= 0) {
       const Pose local = localPose(static_cast<int>(k), q, q_full);
       force[static_cast<std::size_t>(link.parent)] += forceToParent(local, force[k]);
@@ -659,8 +659,7 @@ Eigen::VectorXd ReferenceModel::rnea(const Eigen::VectorXd& q, const Eigen::Vect
   return rneaWithGravity(q, v, a, gravity_);
 }
 
-Eigen::VectorXd ReferenceModel::nonLinearEffects(const Eigen::VectorXd& q,
-                                                 const Eigen::VectorXd& v) const {
+Eigen::VectorXd ReferenceModel::nonLinearEffects(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const {
   return rneaWithGravity(q, v, Eigen::VectorXd::Zero(nv()), gravity_);
 }
 

@@ -89,9 +89,8 @@ class ReferenceModel {
   Eigen::MatrixXd frameJacobian(const Eigen::VectorXd& q, const std::string& frame,
                                 const Eigen::Vector3d& point_in_frame, bool world_aligned) const;
   /// d/dt (J(q) v) along the motion with zero acceleration (same Jacobian as above).
-  Vector6d frameBiasAcceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                                 const std::string& frame, const Eigen::Vector3d& point_in_frame,
-                                 bool world_aligned) const;
+  Vector6d frameBiasAcceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const std::string& frame,
+                                 const Eigen::Vector3d& point_in_frame, bool world_aligned) const;
 
   // ---- mass properties ---------------------------------------------------------------------
   double totalMass() const;
@@ -105,8 +104,7 @@ class ReferenceModel {
 
   // ---- dynamics ----------------------------------------------------------------------------
   /// Recursive Newton-Euler: tau = M(q) a + C(q, v) v + g(q).
-  Eigen::VectorXd rnea(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-                       const Eigen::VectorXd& a) const;
+  Eigen::VectorXd rnea(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a) const;
   /// rnea(q, v, 0)
   Eigen::VectorXd nonLinearEffects(const Eigen::VectorXd& q, const Eigen::VectorXd& v) const;
   /// Column by column: M e_i = rnea(q, 0, e_i) - rnea(q, 0, 0) with zero gravity.
@@ -124,10 +122,10 @@ class ReferenceModel {
     Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit, joint frame
     int full_index = -1;                              // index in the full joint coordinates
     double mass = 0.0;
-    Eigen::Vector3d com = Eigen::Vector3d::Zero();                // link frame
-    Eigen::Matrix3d inertia_com = Eigen::Matrix3d::Zero();        // about the CoM, link axes
-    int body = -1;                                                // merged body
-    Pose in_body;                                                 // link frame in body frame
+    Eigen::Vector3d com = Eigen::Vector3d::Zero();          // link frame
+    Eigen::Matrix3d inertia_com = Eigen::Matrix3d::Zero();  // about the CoM, link axes
+    int body = -1;                                          // merged body
+    Pose in_body;                                           // link frame in body frame
   };
 
   struct Motion {  // per link, link coordinates

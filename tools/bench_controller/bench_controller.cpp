@@ -66,8 +66,8 @@ int usage(const char* msg) {
 
 /// A NAME without '/' and without ".yaml" is a scene of tools/scenes.
 std::string resolveScene(const std::string& s) {
-  const bool is_path = s.find('/') != std::string::npos ||
-                       (s.size() > 5 && s.compare(s.size() - 5, 5, ".yaml") == 0);
+  const bool is_path =
+      s.find('/') != std::string::npos || (s.size() > 5 && s.compare(s.size() - 5, 5, ".yaml") == 0);
   return is_path ? s : std::string(MRQP_BENCH_SCENES_DIR) + "/" + s + ".yaml";
 }
 
@@ -286,7 +286,8 @@ int main(int argc, char** argv) {
     }
   }
   if (opt.scenes.empty())
-    for (const char* s : {"panda_reach", "jvrc1_standing", "comanipulation"}) opt.scenes.push_back(resolveScene(s));
+    for (const char* s : {"panda_reach", "jvrc1_standing", "comanipulation"})
+      opt.scenes.push_back(resolveScene(s));
   if (!opt.timing && (!opt.csv.empty() || !opt.dump_dir.empty()))
     return usage("--csv and --dump-qp need the timed run (no --no-timing)");
 
@@ -312,24 +313,28 @@ int main(int argc, char** argv) {
     if (!runScene(path, opt, csv, r)) return 1;
     ok = ok && !r.failed;
     if (!opt.timing)
-      std::printf("%s: %ld cycles, n %s, me %s, mi %s, mean solver steps %.2f%s\n", r.name.c_str(), r.cycles_done,
-                  range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
+      std::printf("%s: %ld cycles, n %s, me %s, mi %s, mean solver steps %.2f%s\n", r.name.c_str(),
+                  r.cycles_done, range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
                   range(r.mi_min, r.mi_max).c_str(), r.mean_iterations, r.failed ? " (FAILED)" : "");
     results.push_back(r);
   }
   if (opt.timing) {
-    std::printf("| scene | n | equalities | inequalities | cycles | median µs | p90 µs | p99 µs | max µs | "
-                "update median µs | solve median µs | CPU median µs | CPU p99 µs | mean steps | max steps |\n");
+    std::printf(
+        "| scene | n | equalities | inequalities | cycles | median µs | p90 µs | p99 µs | max µs | "
+        "update median µs | solve median µs | CPU median µs | CPU p99 µs | mean steps | max steps |\n");
     std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
     for (const auto& r : results)
-      std::printf("| %s | %s | %s | %s | %ld%s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.2f | %d |\n",
-                  r.name.c_str(), range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
-                  range(r.mi_min, r.mi_max).c_str(), r.cycles_done, r.failed ? " (failed)" : "", r.cycle.median,
-                  r.cycle.p90, r.cycle.p99, r.cycle.max, r.update.median, r.solve.median, r.cpu.median, r.cpu.p99,
-                  r.mean_iterations, r.max_iterations);
+      std::printf(
+          "| %s | %s | %s | %s | %ld%s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.2f | %d "
+          "|\n",
+          r.name.c_str(), range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
+          range(r.mi_min, r.mi_max).c_str(), r.cycles_done, r.failed ? " (failed)" : "", r.cycle.median,
+          r.cycle.p90, r.cycle.p99, r.cycle.max, r.update.median, r.solve.median, r.cpu.median, r.cpu.p99,
+          r.mean_iterations, r.max_iterations);
     std::printf("\nload average (1 min) at end: %s\n", loadAverage().c_str());
     for (const long k : opt.dump_cycles)
-      if (!opt.dump_dir.empty() && opt.cycles <= k) std::printf("note: %ld cycles: cycle %ld was not dumped\n", opt.cycles, k);
+      if (!opt.dump_dir.empty() && opt.cycles <= k)
+        std::printf("note: %ld cycles: cycle %ld was not dumped\n", opt.cycles, k);
   }
   return ok ? 0 : 1;
 }

@@ -101,7 +101,9 @@ int runMarosMeszaros(const std::string& dir, int reps) {
   std::string line;
   std::getline(index, line);  // header
   std::printf("## Maros–Meszaros subset (%s), cold start, %d solves each\n\n", dir.c_str(), reps);
-  std::printf("| problem | n | m (eq) | P | status | iter | prox | rel. obj. error | primal res. | median µs | max µs | CPU median µs |\n");
+  std::printf(
+      "| problem | n | m (eq) | P | status | iter | prox | rel. obj. error | primal res. | median µs | max "
+      "µs | CPU median µs |\n");
   std::printf("|---|---:|---:|:-:|---|---:|---:|---:|---:|---:|---:|---:|\n");
   int ok_pd = 0, n_pd = 0, ok_psd = 0, honest_psd = 0, n_psd = 0, wrong = 0;
   while (std::getline(index, line)) {
@@ -141,13 +143,14 @@ int runMarosMeszaros(const std::string& dir, int reps) {
       std::snprintf(errbuf, sizeof errbuf, "%.1e", err);
     else
       std::snprintf(errbuf, sizeof errbuf, "—");
-    std::printf("| %s | %d | %d (%d) | %s | %s | %d | %d | %s | %.1e | %.0f | %.0f | %.0f |\n", name.c_str(), n,
-                m, meq, posdef ? "PD" : "PSD", mrqp::qp::toString(info.status), info.iterations,
+    std::printf("| %s | %d | %d (%d) | %s | %s | %d | %d | %s | %.1e | %.0f | %.0f | %.0f |\n", name.c_str(),
+                n, m, meq, posdef ? "PD" : "PSD", mrqp::qp::toString(info.status), info.iterations,
                 info.proximal_iterations, errbuf, info.primal_residual, s.median, s.max, c.median);
   }
-  std::printf("\nPD problems matching the reference: %d / %d; PSD: %d / %d match, %d / %d match or "
-              "report non-optimal; wrong \"optimal\": %d\n\n",
-              ok_pd, n_pd, ok_psd, n_psd, honest_psd, n_psd, wrong);
+  std::printf(
+      "\nPD problems matching the reference: %d / %d; PSD: %d / %d match, %d / %d match or "
+      "report non-optimal; wrong \"optimal\": %d\n\n",
+      ok_pd, n_pd, ok_psd, n_psd, honest_psd, n_psd, wrong);
   return 0;
 }
 
@@ -201,11 +204,14 @@ bool expandDumps(const std::vector<std::string>& args, std::vector<std::string>&
 }
 
 int runDumps(const std::vector<std::string>& files, int reps) {
-  std::printf("## QP dumps, each solved %d times cold and %d times warm (from its own optimal active set), "
-              "alternately\n\n",
-              reps, reps);
-  std::printf("| QP | n | eq | ineq | status | cold steps | cold median µs | cold max µs | cold CPU median µs | "
-              "warm steps | warm median µs | warm max µs | warm CPU median µs | active | primal res. | dual res. |\n");
+  std::printf(
+      "## QP dumps, each solved %d times cold and %d times warm (from its own optimal active set), "
+      "alternately\n\n",
+      reps, reps);
+  std::printf(
+      "| QP | n | eq | ineq | status | cold steps | cold median µs | cold max µs | cold CPU median µs | "
+      "warm steps | warm median µs | warm max µs | warm CPU median µs | active | primal res. | dual res. "
+      "|\n");
   std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   int failures = 0;
   for (const auto& file : files) {
@@ -231,11 +237,13 @@ int runDumps(const std::vector<std::string>& files, int reps) {
     const bool ok = ci.status == QpStatus::Optimal && wi.status == QpStatus::Optimal;
     failures += !ok;
     const Stats c = stats(tc.wall), cc = stats(tc.cpu), w = stats(tw.wall), wc = stats(tw.cpu);
-    std::printf("| %s | %d | %d | %d | %s%s%s | %d | %.0f | %.0f | %.0f | %d | %.0f | %.0f | %.0f | %d | %.1e | %.1e |\n",
-                qp.name.c_str(), qp.n, qp.me, qp.mi, mrqp::qp::toString(ci.status), ok ? "" : " / ",
-                ok ? "" : mrqp::qp::toString(wi.status), ci.iterations, c.median, c.max, cc.median, wi.iterations,
-                w.median, w.max, wc.median, ci.active_inequalities + ci.active_bounds, ci.primal_residual,
-                ci.dual_residual);
+    std::printf(
+        "| %s | %d | %d | %d | %s%s%s | %d | %.0f | %.0f | %.0f | %d | %.0f | %.0f | %.0f | %d | %.1e | %.1e "
+        "|\n",
+        qp.name.c_str(), qp.n, qp.me, qp.mi, mrqp::qp::toString(ci.status), ok ? "" : " / ",
+        ok ? "" : mrqp::qp::toString(wi.status), ci.iterations, c.median, c.max, cc.median, wi.iterations,
+        w.median, w.max, wc.median, ci.active_inequalities + ci.active_bounds, ci.primal_residual,
+        ci.dual_residual);
   }
   std::printf("\nnot optimal: %d of %zu\n\n", failures, files.size());
   return failures ? 1 : 0;
@@ -259,17 +267,26 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--data") dir = value();
-    else if (a == "--mm") mm = true;
-    else if (a == "--random") random = true;
-    else if (a == "--dump") dump_args.push_back(value());
-    else if (a == "--reps") reps = std::max(1, std::atoi(value()));
-    else if (a == "--steps") steps = std::max(1, std::atoi(value()));
-    else if (a == "--seed") seed = static_cast<unsigned>(std::atoi(value()));
-    else if (a == "--gradient-scale") gscale = std::atof(value());
+    if (a == "--data")
+      dir = value();
+    else if (a == "--mm")
+      mm = true;
+    else if (a == "--random")
+      random = true;
+    else if (a == "--dump")
+      dump_args.push_back(value());
+    else if (a == "--reps")
+      reps = std::max(1, std::atoi(value()));
+    else if (a == "--steps")
+      steps = std::max(1, std::atoi(value()));
+    else if (a == "--seed")
+      seed = static_cast<unsigned>(std::atoi(value()));
+    else if (a == "--gradient-scale")
+      gscale = std::atof(value());
     else {
-      std::fprintf(stderr, "usage: bench_qp [--data DIR] [--mm] [--random] [--dump FILE|DIR]... [--reps N] "
-                           "[--steps N] [--seed S] [--gradient-scale G]\n");
+      std::fprintf(stderr,
+                   "usage: bench_qp [--data DIR] [--mm] [--random] [--dump FILE|DIR]... [--reps N] "
+                   "[--steps N] [--seed S] [--gradient-scale G]\n");
       return 2;
     }
   }
@@ -282,8 +299,9 @@ int main(int argc, char** argv) {
   if (random) {
     std::printf("## Random dense QPs: %d perturbed QPs in sequence (seed %u, gradient scale %g)\n\n", steps,
                 seed, gscale);
-    std::printf("| problem | start | median µs | p90 µs | p99 µs | max µs | CPU median µs | mean iter | "
-                "max iter | active | failures | cold restarts |\n");
+    std::printf(
+        "| problem | start | median µs | p90 µs | p99 µs | max µs | CPU median µs | mean iter | "
+        "max iter | active | failures | cold restarts |\n");
     std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     mrqp::qp::RandomQpSpec small;
     small.n = 60;

@@ -29,7 +29,9 @@ Outcome decodeCanopen(const DeviceMap& map, const LogFrame& in, std::vector<Trac
   const mrqp_fw_cob kind = mrqp_fw_cob_decode(f.id, &node);
   const bool arm = map.arm_nodes.count(node) != 0;
   const bool ft = map.ft_nodes.count(node) != 0;
-  const std::string dev = arm ? "arm" + std::to_string(node) : ft ? "ft" + std::to_string(node) : "node" + std::to_string(node);
+  const std::string dev = arm  ? "arm" + std::to_string(node)
+                          : ft ? "ft" + std::to_string(node)
+                               : "node" + std::to_string(node);
   switch (kind) {
     case MRQP_FW_COB_KIND_NMT: {
       mrqp_fw_nmt_cmd cmd;
@@ -143,11 +145,13 @@ Outcome decodeCanopen(const DeviceMap& map, const LogFrame& in, std::vector<Trac
 
 }  // namespace
 
-void decodeFrame(const DeviceMap& map, const LogFrame& in, std::vector<TraceRow>& rows, DecodeCounters& counters) {
+void decodeFrame(const DeviceMap& map, const LogFrame& in, std::vector<TraceRow>& rows,
+                 DecodeCounters& counters) {
   ++counters.frames;
   if (in.error_frame) {
     ++counters.error_frames;
-    rows.push_back({in.time, in.iface, "bus", "error_frame", "class", static_cast<double>(in.raw_id & 0x1FFFFFFFu)});
+    rows.push_back(
+        {in.time, in.iface, "bus", "error_frame", "class", static_cast<double>(in.raw_id & 0x1FFFFFFFu)});
     return;
   }
   if (in.extended || in.remote) {
@@ -213,9 +217,15 @@ void decodeFrame(const DeviceMap& map, const LogFrame& in, std::vector<TraceRow>
     }
   }
   switch (decodeCanopen(map, in, rows)) {
-    case Outcome::Decoded: ++counters.decoded; break;
-    case Outcome::Malformed: ++counters.malformed; break;
-    case Outcome::Unknown: ++counters.unknown; break;
+    case Outcome::Decoded:
+      ++counters.decoded;
+      break;
+    case Outcome::Malformed:
+      ++counters.malformed;
+      break;
+    case Outcome::Unknown:
+      ++counters.unknown;
+      break;
   }
 }
 

@@ -44,6 +44,7 @@ struct DecodeCounters {
 };
 
 /// Appends the rows of one frame to `rows`; updates `counters`. Never throws on bad frames.
-void decodeFrame(const DeviceMap& map, const LogFrame& in, std::vector<TraceRow>& rows, DecodeCounters& counters);
+void decodeFrame(const DeviceMap& map, const LogFrame& in, std::vector<TraceRow>& rows,
+                 DecodeCounters& counters);
 
 }  // namespace mrqp::tools

@@ -1,4 +1,5 @@
 // mrqp-candecode: decodes a `candump -L` log into per-device CSV traces (docs/protocol.md).
+#include <sys/stat.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -7,7 +8,6 @@
 #include <iostream>
 #include <map>
 #include <string>
-#include <sys/stat.h>
 
 #include "candump_log.hpp"
 #include "frame_decoder.hpp"
@@ -80,17 +80,25 @@ int main(int argc, char** argv) {
         std::exit(2);
       }
     };
-    if (a == "--arm") list(map.arm_nodes);
-    else if (a == "--ft") list(map.ft_nodes);
-    else if (a == "--mit") list(map.mit_ids);
-    else if (a == "--hand-board") list(map.hand_boards);
-    else if (a == "--increments-per-rev") map.arm_scale.increments_per_rev = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
-    else if (a == "--rated-torque-mnm") map.arm_scale.rated_torque_mNm = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
-    else if (a == "--split") split = value();
+    if (a == "--arm")
+      list(map.arm_nodes);
+    else if (a == "--ft")
+      list(map.ft_nodes);
+    else if (a == "--mit")
+      list(map.mit_ids);
+    else if (a == "--hand-board")
+      list(map.hand_boards);
+    else if (a == "--increments-per-rev")
+      map.arm_scale.increments_per_rev = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
+    else if (a == "--rated-torque-mnm")
+      map.arm_scale.rated_torque_mNm = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
+    else if (a == "--split")
+      split = value();
     else if (a == "-h" || a == "--help") {
       std::cout << kUsage;
       return 0;
-    } else if (input.empty()) input = a;
+    } else if (input.empty())
+      input = a;
     else {
       std::cerr << "mrqp-candecode: unexpected argument " << a << "\n" << kUsage;
       return 2;
@@ -145,8 +153,9 @@ int main(int argc, char** argv) {
       printRow(it->second, r, false);
     }
   }
-  std::cerr << "mrqp-candecode: " << lineNo << " lines, " << counters.frames << " frames, " << counters.decoded
-            << " decoded, " << counters.malformed << " malformed, " << counters.unknown << " unknown, "
-            << counters.error_frames << " error frames, " << badLines << " unreadable lines\n";
+  std::cerr << "mrqp-candecode: " << lineNo << " lines, " << counters.frames << " frames, "
+            << counters.decoded << " decoded, " << counters.malformed << " malformed, " << counters.unknown
+            << " unknown, " << counters.error_frames << " error frames, " << badLines
+            << " unreadable lines\n";
   return badLines > 0 ? 3 : 0;
 }

@@ -130,12 +130,14 @@ double analyticMultiRobotAcceleration(double t) { return (1.0 - t) * std::exp(-t
 
 double analyticSequentialPosition(double t) {
   if (t <= kT0) return 0.25 * t * t;
-  return 1.0 + 0.5 * std::exp(-t - 2.0 + std::sqrt(6.0)) * (11.0 - 5.0 * std::sqrt(6.0) + t * (1.0 - std::sqrt(6.0)));
+  return 1.0 + 0.5 * std::exp(-t - 2.0 + std::sqrt(6.0)) *
+                   (11.0 - 5.0 * std::sqrt(6.0) + t * (1.0 - std::sqrt(6.0)));
 }
 
 double analyticSequentialAcceleration(double t) {
   if (t <= kT0) return 0.5;
-  return 0.5 * std::exp(-t - 2.0 + std::sqrt(6.0)) * (9.0 - 3.0 * std::sqrt(6.0) + t * (1.0 - std::sqrt(6.0)));
+  return 0.5 * std::exp(-t - 2.0 + std::sqrt(6.0)) *
+         (9.0 - 3.0 * std::sqrt(6.0) + t * (1.0 - std::sqrt(6.0)));
 }
 
 }  // namespace mrqp::case_study

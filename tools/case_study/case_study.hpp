@@ -24,10 +24,10 @@ double desiredAcceleration(const BoxState& s);
 /// What one evaluation of a control scheme decided at a state.
 struct Decision {
   bool ok = false;
-  double qdd31 = 0.0;       ///< box acceleration
+  double qdd31 = 0.0;  ///< box acceleration
   double tau11 = 0.0, tau21 = 0.0;
-  double f13 = 0.0, f23 = 0.0;    ///< forces on the box, as the box's QP sees them
-  double f31 = 0.0, f32 = 0.0;    ///< forces on the robots, as the robots' QPs see them
+  double f13 = 0.0, f23 = 0.0;     ///< forces on the box, as the box's QP sees them
+  double f31 = 0.0, f32 = 0.0;     ///< forces on the robots, as the robots' QPs see them
   double newtonViolation() const;  ///< max(|f13 + f31|, |f23 + f32|)
 };
 

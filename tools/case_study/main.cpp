@@ -21,23 +21,24 @@ bool plot(const std::string& csv, const std::string& desired, const std::string&
   const std::string cmd = "gnuplot";
   FILE* g = popen(cmd.c_str(), "w");
   if (!g) return false;
-  std::fprintf(g,
-               "set terminal pngcairo size 900,560 font ',11'\n"
-               "set output '%s'\n"
-               "set datafile separator ','\n"
-               "set key top right\n"
-               "set grid\n"
-               "set xlabel 't [s]'\n"
-               "set ylabel 'box acceleration [m/s^2]'\n"
-               "set title 'Two robots push a box: one multi-robot QP vs decoupled QPs (Sec. II-C)'\n"
-               "t0 = sqrt(6) - 2\n"
-               "set arrow from t0, graph 0 to t0, graph 1 nohead dt 2 lc rgb 'gray40'\n"
-               "set label 't = sqrt(6) - 2' at t0 + 0.1, 0.9\n"
-               "plot '%s' every ::1 using 1:4 with lines lw 2 lc rgb '#1f77b4' title 'multi-robot QP (eq. 43)', \\\n"
-               "     '' every ::1 using 1:5 with lines lw 2 lc rgb '#2ca02c' title 'QP1 -> QP3 -> QP2 (eq. 40)', \\\n"
-               "     '%s' using 1:2 with lines lw 1 dt 3 lc rgb '#d62728' title 'desired (QP1 -> QP3 -> QP2)', \\\n"
-               "     0.5 with lines lw 1 dt 2 lc rgb 'gray40' title 'saturation tau = 1/2'\n",
-               png.c_str(), csv.c_str(), desired.c_str());
+  std::fprintf(
+      g,
+      "set terminal pngcairo size 900,560 font ',11'\n"
+      "set output '%s'\n"
+      "set datafile separator ','\n"
+      "set key top right\n"
+      "set grid\n"
+      "set xlabel 't [s]'\n"
+      "set ylabel 'box acceleration [m/s^2]'\n"
+      "set title 'Two robots push a box: one multi-robot QP vs decoupled QPs (Sec. II-C)'\n"
+      "t0 = sqrt(6) - 2\n"
+      "set arrow from t0, graph 0 to t0, graph 1 nohead dt 2 lc rgb 'gray40'\n"
+      "set label 't = sqrt(6) - 2' at t0 + 0.1, 0.9\n"
+      "plot '%s' every ::1 using 1:4 with lines lw 2 lc rgb '#1f77b4' title 'multi-robot QP (eq. 43)', \\\n"
+      "     '' every ::1 using 1:5 with lines lw 2 lc rgb '#2ca02c' title 'QP1 -> QP3 -> QP2 (eq. 40)', \\\n"
+      "     '%s' using 1:2 with lines lw 1 dt 3 lc rgb '#d62728' title 'desired (QP1 -> QP3 -> QP2)', \\\n"
+      "     0.5 with lines lw 1 dt 2 lc rgb 'gray40' title 'saturation tau = 1/2'\n",
+      png.c_str(), csv.c_str(), desired.c_str());
   return pclose(g) == 0;
 }
 
@@ -52,9 +53,12 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "mrqp-case-study: %s needs a value\n%s", a.c_str(), kUsage);
       return 2;
     }
-    if (a == "--csv") csv = argv[++i];
-    else if (a == "--plot") png = argv[++i];
-    else if (a == "--dt") dt = std::atof(argv[++i]);
+    if (a == "--csv")
+      csv = argv[++i];
+    else if (a == "--plot")
+      png = argv[++i];
+    else if (a == "--dt")
+      dt = std::atof(argv[++i]);
     else if (a == "-h" || a == "--help") {
       std::fputs(kUsage, stdout);
       return 0;
@@ -95,8 +99,8 @@ int main(int argc, char** argv) {
       errSeqAcc = std::max(errSeqAcc, std::abs(s.qdd31 - analyticSequentialAcceleration(t)));
     newtonAll = std::max(newtonAll, a.newtonViolation());
     newtonParallel = std::max(newtonParallel, study.parallel(all).newtonViolation());
-    std::fprintf(out, "%.6f,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", t, all.q, seq.q, a.qdd31, s.qdd31, a.tau11,
-                 a.tau21);
+    std::fprintf(out, "%.6f,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", t, all.q, seq.q, a.qdd31, s.qdd31,
+                 a.tau11, a.tau21);
     if (desired) std::fprintf(desired, "%.6f,%.12g\n", t, desiredAcceleration(seq));
     if (k == steps) break;
     ok = ok && rk4Step(all, dt, [&](const BoxState& x) { return study.multiRobot(x); });
@@ -104,9 +108,12 @@ int main(int argc, char** argv) {
   }
   std::fclose(out);
   if (desired) std::fclose(desired);
-  std::printf("multi-robot QP vs eq. 44:          max |q31 error| = %.3g, max |qdd31 error| = %.3g\n", errAll, errAllAcc);
-  std::printf("QP1 -> QP3 -> QP2 vs eq. 41:       max |q31 error| = %.3g, max |qdd31 error| = %.3g\n", errSeq, errSeqAcc);
-  std::printf("Newton's third law, multi-robot QP: max |f13 + f31| = %.3g (one variable, by construction)\n", newtonAll);
+  std::printf("multi-robot QP vs eq. 44:          max |q31 error| = %.3g, max |qdd31 error| = %.3g\n", errAll,
+              errAllAcc);
+  std::printf("QP1 -> QP3 -> QP2 vs eq. 41:       max |q31 error| = %.3g, max |qdd31 error| = %.3g\n", errSeq,
+              errSeqAcc);
+  std::printf("Newton's third law, multi-robot QP: max |f13 + f31| = %.3g (one variable, by construction)\n",
+              newtonAll);
   std::printf("Newton's third law, parallel QPs:   max |f13 + f31| = %.3g (violated)\n", newtonParallel);
   std::printf("CSV: %s\n", csv.c_str());
   if (!png.empty()) {

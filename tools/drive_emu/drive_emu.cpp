@@ -12,15 +12,13 @@ using mrqp::emulation::EmulatedCia402Drive;
 /// One node: the emulated drive and its joint.
 struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
   Drive(DriveEmulator& owner, const EmuNode& node, TimeNs boot_delay) noexcept
-      : emu(owner), cfg(node), drive(*this, options(node, boot_delay))
-  {
+      : emu(owner), cfg(node), drive(*this, options(node, boot_delay)) {
     q = cfg.joint.initial_position;
     target_position = q;
     drive.stop_heartbeat_at(cfg.faults.heartbeat_stop_at);
   }
 
-  static EmulatedCia402Drive::Options options(const EmuNode& node, TimeNs boot_delay) noexcept
-  {
+  static EmulatedCia402Drive::Options options(const EmuNode& node, TimeNs boot_delay) noexcept {
     EmulatedCia402Drive::Options o;
     o.node = node.node;
     o.boot_delay = boot_delay;
@@ -30,15 +28,14 @@ struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
 
   void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept override { emu.send(frame, at); }
 
-  void on_nmt_reset(bool application) noexcept override
-  {
+  void on_nmt_reset(bool application) noexcept override {
     if (application) {
       target_position = q;
     }
   }
 
-  EmulatedCia402Drive::Feedback on_sync(const EmulatedCia402Drive& d, bool new_targets, TimeNs) noexcept override
-  {
+  EmulatedCia402Drive::Feedback on_sync(const EmulatedCia402Drive& d, bool new_targets,
+                                        TimeNs) noexcept override {
     if (new_targets) {
       double v = 0.0;
       if (mrqp_fw_arm_position_from_inc(&cfg.scale, d.target_position(), &v) == MRQP_FW_CONV_OK) {
@@ -70,8 +67,7 @@ struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
   TimeNs now = 0;
 };
 
-DriveEmulator::DriveEmulator(const EmuConfig& config, FrameSink& sink) : cfg_(config), sink_(sink)
-{
+DriveEmulator::DriveEmulator(const EmuConfig& config, FrameSink& sink) : cfg_(config), sink_(sink) {
   rng_ = 0x9E3779B97F4A7C15ull ^ config.seed;
   drives_.reserve(config.nodes.size());
   for (const EmuNode& node : config.nodes) {
@@ -79,16 +75,14 @@ DriveEmulator::DriveEmulator(const EmuConfig& config, FrameSink& sink) : cfg_(co
   }
 }
 
-double DriveEmulator::rand01() noexcept
-{
+double DriveEmulator::rand01() noexcept {
   rng_ ^= rng_ << 13;
   rng_ ^= rng_ >> 7;
   rng_ ^= rng_ << 17;
   return static_cast<double>(rng_ >> 11) * (1.0 / 9007199254740992.0);
 }
 
-void DriveEmulator::send(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+void DriveEmulator::send(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (cfg_.drop_fraction > 0.0 && rand01() < cfg_.drop_fraction) {
     ++stats_.dropped;
     return;
@@ -111,8 +105,7 @@ double DriveEmulator::position(std::size_t i) const noexcept { return drives_[i]
 mrqp_fw_cia402_state DriveEmulator::state(std::size_t i) const noexcept { return drives_[i]->drive.state(); }
 mrqp_fw_nmt_state DriveEmulator::nmt(std::size_t i) const noexcept { return drives_[i]->drive.nmt(); }
 
-TimeNs DriveEmulator::next_event() const noexcept
-{
+TimeNs DriveEmulator::next_event() const noexcept {
   TimeNs t = next_step_;
   for (const auto& d : drives_) {
     t = std::min(t, d->drive.next_event());
@@ -123,8 +116,7 @@ TimeNs DriveEmulator::next_event() const noexcept
   return t;
 }
 
-void DriveEmulator::step(Drive& d, double dt) noexcept
-{
+void DriveEmulator::step(Drive& d, double dt) noexcept {
   const JointModel& j = d.cfg.joint;
   double tau = 0.0;
   if (d.drive.state() == MRQP_FW_CIA402_OPERATION_ENABLED) {
@@ -144,8 +136,7 @@ void DriveEmulator::step(Drive& d, double dt) noexcept
   d.q += d.qd * dt;
 }
 
-void DriveEmulator::advance(TimeNs now) noexcept
-{
+void DriveEmulator::advance(TimeNs now) noexcept {
   while (next_event() <= now) {
     const TimeNs t = next_event();
     for (auto& p : drives_) {
@@ -167,8 +158,7 @@ void DriveEmulator::advance(TimeNs now) noexcept
   }
 }
 
-void DriveEmulator::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+void DriveEmulator::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   for (auto& d : drives_) {
     d->now = now;
     if (d->drive.on_frame(f, now) == EmulatedCia402Drive::Received::Rpdo) {

@@ -7,9 +7,9 @@
 // emulator to a SimNode (tests), main.cpp to SocketCAN.
 #pragma once
 
-#include <mrqp/emulation/emulated_cia402_drive.hpp>
-#include <mrqp/drivers/time.hpp>
 #include <mrqp/firmware_if/firmware_if.h>
+#include <mrqp/drivers/time.hpp>
+#include <mrqp/emulation/emulated_cia402_drive.hpp>
 
 #include <cstdint>
 #include <memory>
@@ -23,11 +23,11 @@ using mrqp::drivers::TimeNs;
 constexpr TimeNs kNever = mrqp::emulation::EmulatedCia402Drive::kNever;
 
 struct JointModel {
-  double inertia = 0.05;       ///< kg m^2, > 0
-  double damping = 0.05;       ///< N m s/rad, >= 0
-  double torque_limit = 20.0;  ///< N m, > 0 (motor saturation)
-  double kp = 200.0;           ///< CSP position loop inside the drive, N m/rad
-  double kd = 5.0;             ///< N m s/rad
+  double inertia = 0.05;          ///< kg m^2, > 0
+  double damping = 0.05;          ///< N m s/rad, >= 0
+  double torque_limit = 20.0;     ///< N m, > 0 (motor saturation)
+  double kp = 200.0;              ///< CSP position loop inside the drive, N m/rad
+  double kd = 5.0;                ///< N m s/rad
   double initial_position = 0.0;  ///< rad
 };
 
@@ -48,18 +48,19 @@ struct EmuNode {
 struct EmuConfig {
   std::vector<EmuNode> nodes;
   std::string interface = "vcan0";
-  TimeNs step = 500000;          ///< physics integration step (ns)
-  TimeNs boot_delay = 2000000;   ///< reset -> boot-up message
-  double drop_fraction = 0.0;    ///< of the frames the emulator sends, dropped
-  double corrupt_fraction = 0.0; ///< of the frames the emulator sends, truncated to 1 byte
+  TimeNs step = 500000;           ///< physics integration step (ns)
+  TimeNs boot_delay = 2000000;    ///< reset -> boot-up message
+  double drop_fraction = 0.0;     ///< of the frames the emulator sends, dropped
+  double corrupt_fraction = 0.0;  ///< of the frames the emulator sends, truncated to 1 byte
   std::uint32_t seed = 1;
-  double duration_s = 0.0;       ///< 0: run until signalled
+  double duration_s = 0.0;  ///< 0: run until signalled
 };
 
 /// Loads a YAML configuration; on error returns false and "<file>: <field>: <problem>".
 bool load_config(const std::string& path, EmuConfig* config, std::string* error);
 /// Parses "N@T" / "N@T:code" (T in seconds) fault switches of the command line into `config`.
-bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* config, std::string* error);
+bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* config,
+                        std::string* error);
 /// Validates the configuration (node ids unique 1..127, physical parameters positive).
 bool validate_config(const EmuConfig& config, const std::string& origin, std::string* error);
 

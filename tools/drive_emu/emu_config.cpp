@@ -22,8 +22,7 @@ using scene::Reader;
 
 TimeNs seconds_to_ns(double s) { return static_cast<TimeNs>(std::llround(s * 1e9)); }
 
-void read_faults(const Reader& r, const YAML::Node& f, const std::string& path, NodeFaults* out)
-{
+void read_faults(const Reader& r, const YAML::Node& f, const std::string& path, NodeFaults* out) {
   const Map m(r, f, path, {"stop_heartbeat_at", "emcy_at", "emcy_code", "saturate_at"});
   if (m.has("stop_heartbeat_at")) {
     out->heartbeat_stop_at = seconds_to_ns(m.number("stop_heartbeat_at", Bound::NonNegative, 0.0));
@@ -37,8 +36,7 @@ void read_faults(const Reader& r, const YAML::Node& f, const std::string& path, 
   }
 }
 
-void read_joint(const Map& m, JointModel* j)
-{
+void read_joint(const Map& m, JointModel* j) {
   j->inertia = m.number("inertia", Bound::Positive, j->inertia);
   j->damping = m.number("damping", Bound::NonNegative, j->damping);
   j->torque_limit = m.number("torque_limit", Bound::Positive, j->torque_limit);
@@ -47,19 +45,18 @@ void read_joint(const Map& m, JointModel* j)
 }
 
 /// A fraction of the frames sent, in [0, 1] (0 when absent).
-double fraction(const Map& m, const char* key)
-{
+double fraction(const Map& m, const char* key) {
   const double v = m.number(key, Bound::NonNegative, 0.0);
   if (v > 1.0) {
-    m.reader().fail(*m.find(key), m.at(key), "expected a fraction in [0, 1], got " + scene::describe(*m.find(key)));
+    m.reader().fail(*m.find(key), m.at(key),
+                    "expected a fraction in [0, 1], got " + scene::describe(*m.find(key)));
   }
   return v;
 }
 
 std::uint32_t rated_mNm(double n_m) { return static_cast<std::uint32_t>(std::llround(n_m * 1000.0)); }
 
-EmuConfig read_config(const Reader& r, const YAML::Node& root)
-{
+EmuConfig read_config(const Reader& r, const YAML::Node& root) {
   EmuConfig c;
   const Map top(r, root, "",
                 {"interface", "step_ms", "boot_delay_ms", "duration", "increments_per_rev", "rated_torque",
@@ -68,7 +65,8 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root)
     c.interface = top.name("interface");
   }
   c.step = static_cast<TimeNs>(std::llround(top.number("step_ms", Bound::Positive, 0.5) * 1e6));
-  c.boot_delay = static_cast<TimeNs>(std::llround(top.number("boot_delay_ms", Bound::NonNegative, 2.0) * 1e6));
+  c.boot_delay =
+      static_cast<TimeNs>(std::llround(top.number("boot_delay_ms", Bound::NonNegative, 2.0) * 1e6));
   c.duration_s = top.number("duration", Bound::NonNegative, 0.0);
   const int ipr = top.integer("increments_per_rev", 1, INT_MAX, 524288);
   const double rated = top.number("rated_torque", Bound::Positive, 1.0);
@@ -99,7 +97,8 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root)
                    "kd", "initial_position", "faults"});
       id_node = m.require("node");
       id_path = m.at("node");
-      e.scale.increments_per_rev = static_cast<std::uint32_t>(m.integer("increments_per_rev", 1, INT_MAX, ipr));
+      e.scale.increments_per_rev =
+          static_cast<std::uint32_t>(m.integer("increments_per_rev", 1, INT_MAX, ipr));
       e.scale.rated_torque_mNm = rated_mNm(m.number("rated_torque", Bound::Positive, rated));
       read_joint(m, &e.joint);
       e.joint.initial_position = m.number("initial_position", Bound::Any, 0.0);
@@ -113,7 +112,8 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root)
     const auto [it, inserted] = first_line.emplace(id, scene::lineOf(id_node));
     if (!inserted) {
       r.fail(id_node, id_path,
-             "node id " + std::to_string(id) + " appears twice (first at line " + std::to_string(it->second) + ")");
+             "node id " + std::to_string(id) + " appears twice (first at line " + std::to_string(it->second) +
+                 ")");
     }
     e.node = static_cast<std::uint8_t>(id);
     c.nodes.push_back(e);
@@ -130,8 +130,7 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root)
 
 }  // namespace
 
-bool validate_config(const EmuConfig& c, const std::string& origin, std::string* error)
-{
+bool validate_config(const EmuConfig& c, const std::string& origin, std::string* error) {
   auto fail = [&](const std::string& field, const std::string& what) {
     if (error != nullptr) {
       *error = origin + ": " + field + ": " + what;
@@ -182,8 +181,7 @@ bool validate_config(const EmuConfig& c, const std::string& origin, std::string*
   return true;
 }
 
-bool load_config(const std::string& path, EmuConfig* out, std::string* error)
-{
+bool load_config(const std::string& path, EmuConfig* out, std::string* error) {
   try {
     const Reader r(path);
     const YAML::Node root = scene::parseYamlDocument(scene::readTextFile(path), path);
@@ -201,8 +199,7 @@ bool load_config(const std::string& path, EmuConfig* out, std::string* error)
   }
 }
 
-bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* c, std::string* error)
-{
+bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* c, std::string* error) {
   // arg: N@T or N@T:code (T in seconds)
   const auto at = arg.find('@');
   auto fail = [&](const std::string& what) {

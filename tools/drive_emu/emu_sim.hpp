@@ -11,14 +11,12 @@ namespace mrqp::drive_emu {
 
 class SimDriveEmulator final : public mrqp::drivers::SimListener, private FrameSink {
  public:
-  SimDriveEmulator(mrqp::drivers::SimNode& node, const EmuConfig& config) : node_(node), emu_(config, *this)
-  {
+  SimDriveEmulator(mrqp::drivers::SimNode& node, const EmuConfig& config) : node_(node), emu_(config, *this) {
     node_.set_listener(this);
     rearm();
   }
   void on_receive(mrqp::drivers::SimNode&, mrqp::drivers::ReceiveResult kind,
-                  const mrqp::drivers::RxFrame& rx) noexcept override
-  {
+                  const mrqp::drivers::RxFrame& rx) noexcept override {
     if (kind != mrqp::drivers::ReceiveResult::Frame) {
       return;
     }
@@ -26,8 +24,7 @@ class SimDriveEmulator final : public mrqp::drivers::SimListener, private FrameS
     emu_.on_frame(rx.frame, rx.timestamp);
     rearm();
   }
-  void on_timer(mrqp::drivers::SimNode&, TimeNs now) noexcept override
-  {
+  void on_timer(mrqp::drivers::SimNode&, TimeNs now) noexcept override {
     emu_.advance(now);
     rearm();
   }

@@ -23,8 +23,7 @@ void on_signal(int) { g_stop = 1; }
 class BusSink final : public FrameSink {
  public:
   explicit BusSink(mrqp::drivers::SocketCanBus& bus) : bus_(bus) {}
-  void emit(const mrqp_fw_frame& frame, TimeNs) noexcept override
-  {
+  void emit(const mrqp_fw_frame& frame, TimeNs) noexcept override {
     if (bus_.send(frame) != mrqp::drivers::SendResult::Ok) {
       ++failed;
     }
@@ -35,8 +34,7 @@ class BusSink final : public FrameSink {
   mrqp::drivers::SocketCanBus& bus_;
 };
 
-void usage()
-{
+void usage() {
   std::fprintf(stderr,
                "usage: mrqp-drive-emu --config FILE.yaml [--interface IF] [--duration S]\n"
                "       [--stop-heartbeat N@T] [--emcy N@T[:code]] [--saturate N@T]\n"
@@ -46,8 +44,7 @@ void usage()
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   std::string config_path;
   std::string interface;
   double duration = -1.0;
@@ -159,10 +156,11 @@ int main(int argc, char** argv)
     }
   }
   const EmuStats& st = emu.stats();
-  std::printf("mrqp-drive-emu: done: sent=%llu dropped=%llu corrupted=%llu syncs=%llu rpdos=%llu send_failed=%lu\n",
-              static_cast<unsigned long long>(st.sent), static_cast<unsigned long long>(st.dropped),
-              static_cast<unsigned long long>(st.corrupted), static_cast<unsigned long long>(st.syncs),
-              static_cast<unsigned long long>(st.rpdos), sink.failed);
+  std::printf(
+      "mrqp-drive-emu: done: sent=%llu dropped=%llu corrupted=%llu syncs=%llu rpdos=%llu send_failed=%lu\n",
+      static_cast<unsigned long long>(st.sent), static_cast<unsigned long long>(st.dropped),
+      static_cast<unsigned long long>(st.corrupted), static_cast<unsigned long long>(st.syncs),
+      static_cast<unsigned long long>(st.rpdos), sink.failed);
   for (std::size_t i = 0; i < emu.size(); ++i) {
     std::printf("  node %u: nmt=0x%02x cia402=%d position=%.4f rad\n", cfg.nodes[i].node,
                 static_cast<unsigned>(emu.nmt(i)), static_cast<int>(emu.state(i)), emu.position(i));

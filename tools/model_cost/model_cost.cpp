@@ -23,8 +23,8 @@
 #include <string>
 
 #include "jvrc1_model.hpp"
-#include "panda_model.hpp"
 #include "model/model_traits.hpp"
+#include "panda_model.hpp"
 
 namespace {
 
@@ -126,8 +126,8 @@ int run(const char* model, const std::string& name, long n) {
   const auto t0 = Clock::now();
   measuredCalls<M>(w, fn, n);
   const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-  std::printf("%s %s nv %d frames %d calls %ld mean %.3f us/call\n", model, name.c_str(), M::nv,
-              M::nframes, n, n > 0 ? 1e6 * s / static_cast<double>(n) : 0.0);
+  std::printf("%s %s nv %d frames %d calls %ld mean %.3f us/call\n", model, name.c_str(), M::nv, M::nframes,
+              n, n > 0 ? 1e6 * s / static_cast<double>(n) : 0.0);
   return 0;
 }
 

@@ -59,8 +59,12 @@ void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
   count();
   return __libc_malloc(size == 0 ? 1 : size);
 }
-void* operator new(std::size_t size, std::align_val_t a) { return countedAlignedNew(size, static_cast<std::size_t>(a)); }
-void* operator new[](std::size_t size, std::align_val_t a) { return countedAlignedNew(size, static_cast<std::size_t>(a)); }
+void* operator new(std::size_t size, std::align_val_t a) {
+  return countedAlignedNew(size, static_cast<std::size_t>(a));
+}
+void* operator new[](std::size_t size, std::align_val_t a) {
+  return countedAlignedNew(size, static_cast<std::size_t>(a));
+}
 void operator delete(void* p) noexcept { __libc_free(p); }
 void operator delete[](void* p) noexcept { __libc_free(p); }
 void operator delete(void* p, std::size_t) noexcept { __libc_free(p); }

@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
-#include "loop/fault_injector.hpp"
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
 #include "loop/emulated_rig.hpp"
+#include "loop/fault_injector.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
 #include "loop/ideal_plant.hpp"
@@ -145,7 +145,8 @@ int runMain(int argc, char** argv) {
     for (std::size_t b = 0; b < rig->busCount(); ++b) buses.push_back(&rig->master(b));
   } else {
     if (o.buses.size() != rh.buses.size()) {
-      throw std::runtime_error("--bus: " + std::to_string(o.buses.size()) + " interfaces given, the hardware section has " +
+      throw std::runtime_error("--bus: " + std::to_string(o.buses.size()) +
+                               " interfaces given, the hardware section has " +
                                std::to_string(rh.buses.size()) + " buses");
     }
     for (std::size_t b = 0; b < o.buses.size(); ++b) {
@@ -216,12 +217,14 @@ int runMain(int argc, char** argv) {
     now = next();
     if (ready) break;
   }
-  if (!o.quiet) std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
+  if (!o.quiet)
+    std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
 
   // ---- the loop ----
   std::vector<std::uint64_t> busy0;
   if (rig) {
-    for (std::size_t b = 0; b < rig->busCount(); ++b) busy0.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
+    for (std::size_t b = 0; b < rig->busCount(); ++b)
+      busy0.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
   }
   const drivers::TimeNs loop_start = now;
   long misses = 0;
@@ -241,7 +244,8 @@ int runMain(int argc, char** argv) {
     if (rig) rig->advanceTo(now + period);
     if (!o.quiet && (k % progress_every == 0 || k + 1 == cycles)) {
       std::fprintf(stderr, "\r  t = %6.2f s  cycle %5.0f µs  qp %s%s   ", static_cast<double>(k) * dt,
-                   cycle_us[static_cast<std::size_t>(k)], ctrl.lastStatus() == qp::QpStatus::Optimal ? "optimal" : "NOT optimal",
+                   cycle_us[static_cast<std::size_t>(k)],
+                   ctrl.lastStatus() == qp::QpStatus::Optimal ? "optimal" : "NOT optimal",
                    ctrl.safeStopped() ? "  SAFE STOP" : "");
     }
     now = next();
@@ -267,10 +271,12 @@ int runMain(int argc, char** argv) {
   s.max_us = sorted.empty() ? 0.0 : sorted.back();
   if (ctrl.safeStopped()) {
     char buf[256];
-    std::snprintf(buf, sizeof buf, "%s at t = %.4f s (cycle %llu)%s%s%s%s", loop::stopReasonStr(ctrl.stopReason()),
-                  static_cast<double>(ctrl.stopTime()) * 1e-9, static_cast<unsigned long long>(ctrl.stopCycle()),
+    std::snprintf(buf, sizeof buf, "%s at t = %.4f s (cycle %llu)%s%s%s%s",
+                  loop::stopReasonStr(ctrl.stopReason()), static_cast<double>(ctrl.stopTime()) * 1e-9,
+                  static_cast<unsigned long long>(ctrl.stopCycle()),
                   ctrl.stopDevice().empty() ? "" : ", device ", ctrl.stopDevice().c_str(),
-                  ctrl.stopFlags() != 0u ? ": " : "", ctrl.stopFlags() != 0u ? flagNames(ctrl.stopFlags()).c_str() : "");
+                  ctrl.stopFlags() != 0u ? ": " : "",
+                  ctrl.stopFlags() != 0u ? flagNames(ctrl.stopFlags()).c_str() : "");
     s.safe_stop = buf;
   }
   for (const auto& [name, id] : sc.tasks) s.task_errors_final.emplace_back(name, p.taskError(id).norm());
@@ -286,12 +292,14 @@ int runMain(int argc, char** argv) {
   for (std::size_t b = 0; b < rh.buses.size(); ++b) {
     double load = rh.buses[b].utilisation_worst;
     if (rig && loop_s > 0.0) {
-      load = static_cast<double>(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns) - busy0[b]) * 1e-9 / loop_s;
+      load = static_cast<double>(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns) - busy0[b]) * 1e-9 /
+             loop_s;
     }
     s.bus_load.emplace_back(rh.buses[b].decl.name, load);
   }
   s.faults = faults.records();
-  if (!run::writeSummaryJson(s, o.out + "/summary.json")) throw std::runtime_error(o.out + "/summary.json: cannot write");
+  if (!run::writeSummaryJson(s, o.out + "/summary.json"))
+    throw std::runtime_error(o.out + "/summary.json: cannot write");
   run::printSummary(s);
   if (o.plots) {
     std::string err;

@@ -42,8 +42,9 @@ void MotionTrack::capture(double t) noexcept {
   next_ = t + 1.0 / fps_;
 }
 
-std::string MotionTrack::render(const scene::SceneSpec& spec, const std::string& text, const std::string& file,
-                                const scene::ModelRegistry& models, const std::string& out_dir) const {
+std::string MotionTrack::render(const scene::SceneSpec& spec, const std::string& text,
+                                const std::string& file, const scene::ModelRegistry& models,
+                                const std::string& out_dir) const {
   if (frames_ == 0) return "no motion recorded";
 #ifdef MRQP_RUN_HAVE_MUJOCO
   sim::MujocoPlant replay(spec, sim::loadPlantSpecString(text, file), &models);
@@ -55,12 +56,14 @@ std::string MotionTrack::render(const scene::SceneSpec& spec, const std::string&
     for (std::size_t i = 0; i < handles_.size(); ++i) {
       const int h = replay.entityHandle(names_[i]);
       if (h < 0 || replay.entityNq(h) != nq_[i]) continue;
-      replay.setEntityState(h, q_.col(f).segment(offset_[i], nq_[i]), Eigen::VectorXd::Zero(replay.entityNv(h)));
+      replay.setEntityState(h, q_.col(f).segment(offset_[i], nq_[i]),
+                            Eigen::VectorXd::Zero(replay.entityNv(h)));
     }
     recorder.capture();
   }
   const sim::RecorderOutput out = recorder.finish();
-  return out.strip + " (" + std::to_string(out.frames) + " frames)" + (out.video.empty() ? "; " + out.note : ", " + out.video);
+  return out.strip + " (" + std::to_string(out.frames) + " frames)" +
+         (out.video.empty() ? "; " + out.note : ", " + out.video);
 #else
   (void)spec;
   (void)text;

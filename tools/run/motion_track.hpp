@@ -21,7 +21,8 @@ namespace mrqp::run {
 class MotionTrack {
  public:
   /// Room for every frame of a run of `duration` seconds at `fps` (set-up: allocates).
-  MotionTrack(const loop::Plant& plant, const problem::MultiRobotProblem& problem, double duration, double fps);
+  MotionTrack(const loop::Plant& plant, const problem::MultiRobotProblem& problem, double duration,
+              double fps);
 
   /// Whether the run's time t has reached the next frame.
   bool due(double t) const noexcept { return frames_ < capacity_ && t + 1e-9 >= next_; }

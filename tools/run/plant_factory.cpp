@@ -12,8 +12,9 @@
 
 namespace mrqp::run {
 
-std::unique_ptr<loop::Plant> makePlant(const std::string& kind, const scene::SceneSpec& spec, const std::string& text,
-                                       const std::string& file, const scene::ModelRegistry& models,
+std::unique_ptr<loop::Plant> makePlant(const std::string& kind, const scene::SceneSpec& spec,
+                                       const std::string& text, const std::string& file,
+                                       const scene::ModelRegistry& models,
                                        const problem::MultiRobotProblem& model) {
   if (kind == "ideal") {
     // The world: a problem of its own, built from the same scene.

@@ -14,8 +14,9 @@ namespace mrqp::run {
 
 /// `text` is the scene file's text (with --set applied), `file` its name for messages; `model`
 /// the controller's problem (the ideal plant follows its solution).
-std::unique_ptr<loop::Plant> makePlant(const std::string& kind, const scene::SceneSpec& spec, const std::string& text,
-                                       const std::string& file, const scene::ModelRegistry& models,
+std::unique_ptr<loop::Plant> makePlant(const std::string& kind, const scene::SceneSpec& spec,
+                                       const std::string& text, const std::string& file,
+                                       const scene::ModelRegistry& models,
                                        const problem::MultiRobotProblem& model);
 
 }  // namespace mrqp::run

@@ -43,7 +43,8 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
       o.out = value();
     } else if (a == "--plant") {
       o.plant = value();
-      if (o.plant != "ideal" && o.plant != "mujoco") throw std::invalid_argument("--plant: expected mujoco or ideal");
+      if (o.plant != "ideal" && o.plant != "mujoco")
+        throw std::invalid_argument("--plant: expected mujoco or ideal");
     } else if (a == "--bus") {
       const std::string v = value();
       if (v != "sim") {
@@ -57,7 +58,8 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
       }
     } else if (a == "--cycles") {
       const double n = number(a, value());
-      if (!(n >= 1.0) || n != static_cast<double>(static_cast<long>(n))) throw std::invalid_argument("--cycles: expected an integer >= 1");
+      if (!(n >= 1.0) || n != static_cast<double>(static_cast<long>(n)))
+        throw std::invalid_argument("--cycles: expected an integer >= 1");
       o.cycles = static_cast<long>(n);
     } else if (a == "--duration") {
       o.duration = number(a, value());
@@ -82,7 +84,8 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
   }
   if (o.scene.empty()) throw std::invalid_argument("a scene file is required");
   if (o.out.empty()) throw std::invalid_argument("--out DIR is required");
-  if (o.cycles > 0 && o.duration > 0.0) throw std::invalid_argument("--cycles and --duration exclude each other");
+  if (o.cycles > 0 && o.duration > 0.0)
+    throw std::invalid_argument("--cycles and --duration exclude each other");
   return o;
 }
 

@@ -11,8 +11,8 @@ namespace mrqp::run {
 struct RunOptions {
   std::string scene;
   std::string out;
-  std::string plant;                  ///< "" = from the scene (ideal when it says nothing)
-  std::vector<std::string> buses;     ///< empty = sim
+  std::string plant;               ///< "" = from the scene (ideal when it says nothing)
+  std::vector<std::string> buses;  ///< empty = sim
   long cycles = -1;
   double duration = -1.0;
   bool realtime = false;

@@ -10,7 +10,8 @@ namespace mrqp::run {
 double percentile(const std::vector<double>& sorted, double p) {
   if (sorted.empty()) return 0.0;
   const double rank = std::ceil(p * static_cast<double>(sorted.size()));
-  const std::size_t i = static_cast<std::size_t>(std::clamp(rank, 1.0, static_cast<double>(sorted.size()))) - 1;
+  const std::size_t i =
+      static_cast<std::size_t>(std::clamp(rank, 1.0, static_cast<double>(sorted.size()))) - 1;
   return sorted[i];
 }
 
@@ -56,8 +57,9 @@ bool writeSummaryJson(const RunSummary& s, const std::string& path) {
   std::string faults = "[";
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const loop::FaultRecord& r = s.faults[i];
-    faults += std::string(i ? "," : "") + "\n    {\"kind\": " + quoted(r.kind) + ", \"device\": " + quoted(r.device) +
-              ", \"injected_at_s\": " + time(r.injected_at_s) + ", \"detected_at_s\": " + time(r.detected_at_s) +
+    faults += std::string(i ? "," : "") + "\n    {\"kind\": " + quoted(r.kind) +
+              ", \"device\": " + quoted(r.device) + ", \"injected_at_s\": " + time(r.injected_at_s) +
+              ", \"detected_at_s\": " + time(r.detected_at_s) +
               ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + "}";
   }
   faults += s.faults.empty() ? "]" : "\n  ]";
@@ -67,9 +69,10 @@ bool writeSummaryJson(const RunSummary& s, const std::string& path) {
                "  \"cycle_time_us\": {\"median\": %s, \"p99\": %s, \"p999\": %s, \"max\": %s},\n"
                "  \"safe_stop\": %s,\n  \"task_errors_final\": %s,\n  \"joint_tracking_error_max_rad\": %s,\n"
                "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s\n}\n",
-               quoted(s.scene).c_str(), s.cycles, num(s.period_s).c_str(), s.deadline_misses, s.allocations_in_loop,
-               s.log_records_dropped, num(s.median_us).c_str(), num(s.p99_us).c_str(), num(s.p999_us).c_str(),
-               num(s.max_us).c_str(), s.safe_stop.empty() ? "null" : quoted(s.safe_stop).c_str(),
+               quoted(s.scene).c_str(), s.cycles, num(s.period_s).c_str(), s.deadline_misses,
+               s.allocations_in_loop, s.log_records_dropped, num(s.median_us).c_str(), num(s.p99_us).c_str(),
+               num(s.p999_us).c_str(), num(s.max_us).c_str(),
+               s.safe_stop.empty() ? "null" : quoted(s.safe_stop).c_str(),
                object(s.task_errors_final).c_str(), object(s.joint_tracking_error_max_rad).c_str(),
                object(s.base_estimate_error_m).c_str(), object(s.bus_load).c_str(), faults.c_str());
   return std::fclose(f) == 0;
@@ -79,18 +82,21 @@ void printSummary(const RunSummary& s) {
   std::printf("mrqp-run: %ld cycles of %.3g ms\n", s.cycles, s.period_s * 1e3);
   std::printf("  final task errors:\n");
   for (const auto& [name, v] : s.task_errors_final) std::printf("    %-20s %.3g\n", name.c_str(), v);
-  std::printf("  cycle time (µs): median %.1f, p99 %.1f, p99.9 %.1f, max %.1f; deadline misses %ld\n", s.median_us,
-              s.p99_us, s.p999_us, s.max_us, s.deadline_misses);
+  std::printf("  cycle time (µs): median %.1f, p99 %.1f, p99.9 %.1f, max %.1f; deadline misses %ld\n",
+              s.median_us, s.p99_us, s.p999_us, s.max_us, s.deadline_misses);
   for (const auto& [name, v] : s.joint_tracking_error_max_rad) {
     std::printf("  %s: joint tracking error max %.3g rad\n", name.c_str(), v);
   }
-  for (const auto& [name, v] : s.base_estimate_error_m) std::printf("  %s: base estimate error %.3g m\n", name.c_str(), v);
+  for (const auto& [name, v] : s.base_estimate_error_m)
+    std::printf("  %s: base estimate error %.3g m\n", name.c_str(), v);
   for (const auto& [name, v] : s.bus_load) std::printf("  bus %s: load %.1f %%\n", name.c_str(), v * 100.0);
-  std::printf("  allocations in the loop: %ld; log records dropped: %ld\n", s.allocations_in_loop, s.log_records_dropped);
+  std::printf("  allocations in the loop: %ld; log records dropped: %ld\n", s.allocations_in_loop,
+              s.log_records_dropped);
   std::printf("  safe stop: %s\n", s.safe_stop.empty() ? "none" : s.safe_stop.c_str());
   for (const loop::FaultRecord& r : s.faults) {
-    std::printf("  fault %s on %s: injected %s s, detected %s s, safe state %s s\n", r.kind.c_str(), r.device.c_str(),
-                time(r.injected_at_s).c_str(), time(r.detected_at_s).c_str(), time(r.safe_state_at_s).c_str());
+    std::printf("  fault %s on %s: injected %s s, detected %s s, safe state %s s\n", r.kind.c_str(),
+                r.device.c_str(), time(r.injected_at_s).c_str(), time(r.detected_at_s).c_str(),
+                time(r.safe_state_at_s).c_str());
   }
 }
 
@@ -126,9 +132,9 @@ std::vector<std::string> writePlots(const std::string& dir, const std::vector<st
   if (!tasks.empty()) {
     plot = "set logscale y\nset xlabel 't (s)'\nset ylabel 'task error'\nplot ";
     for (std::size_t i = 0; i < tasks.size(); ++i) {
-      plot += (i ? ", " : "") + std::string("'") + csv + "' every ::1 using 1:(column(" + std::to_string(tasks[i]) +
-              ") > 0 ? column(" + std::to_string(tasks[i]) + ") : 1/0) with lines lw 2 title columnhead(" +
-              std::to_string(tasks[i]) + ")";
+      plot += (i ? ", " : "") + std::string("'") + csv + "' every ::1 using 1:(column(" +
+              std::to_string(tasks[i]) + ") > 0 ? column(" + std::to_string(tasks[i]) +
+              ") : 1/0) with lines lw 2 title columnhead(" + std::to_string(tasks[i]) + ")";
     }
     run("task_errors.png", plot);
   }
@@ -137,9 +143,9 @@ std::vector<std::string> writePlots(const std::string& dir, const std::vector<st
     plot = "set xlabel 't (s)'\nset ylabel 'contact force (N)'\nplot ";
     for (std::size_t i = 0; i < forces.size(); ++i) {
       const int c = forces[i];
-      plot += (i ? ", " : "") + std::string("'") + csv + "' every ::1 using 1:(sqrt(column(" + std::to_string(c) +
-              ")**2 + column(" + std::to_string(c + 1) + ")**2 + column(" + std::to_string(c + 2) +
-              ")**2)) with lines title columnhead(" + std::to_string(c) + ")";
+      plot += (i ? ", " : "") + std::string("'") + csv + "' every ::1 using 1:(sqrt(column(" +
+              std::to_string(c) + ")**2 + column(" + std::to_string(c + 1) + ")**2 + column(" +
+              std::to_string(c + 2) + ")**2)) with lines title columnhead(" + std::to_string(c) + ")";
     }
     run("contact_forces.png", plot);
   }
@@ -150,16 +156,19 @@ std::vector<std::string> writePlots(const std::string& dir, const std::vector<st
     for (std::size_t i = 0; i < n; ++i) {
       const int c = cmd[i];
       plot += (i ? ", " : "") + std::string("'") + csv + "' every ::1 using 1:" + std::to_string(c) +
-              " with lines lw 2 title columnhead(" + std::to_string(c) + "), '" + csv + "' every ::1 using 1:" +
-              std::to_string(c + 1) + " with lines dt 2 title columnhead(" + std::to_string(c + 1) + ")";
+              " with lines lw 2 title columnhead(" + std::to_string(c) + "), '" + csv +
+              "' every ::1 using 1:" + std::to_string(c + 1) + " with lines dt 2 title columnhead(" +
+              std::to_string(c + 1) + ")";
     }
     run("command_feedback.png", plot);
   }
   const std::vector<int> cycle = cols("cycle_us");
   if (!cycle.empty()) {
-    plot = "set xlabel 'cycle time (us)'\nset ylabel 'cycles'\nset logscale y\nbin(x) = 5*floor(x/5)\n"
-           "set boxwidth 5\nset style fill solid 0.6\nplot '" + csv + "' every ::1 using (bin(column(" +
-           std::to_string(cycle[0]) + "))):(1) smooth frequency with boxes title 'cycle time'";
+    plot =
+        "set xlabel 'cycle time (us)'\nset ylabel 'cycles'\nset logscale y\nbin(x) = 5*floor(x/5)\n"
+        "set boxwidth 5\nset style fill solid 0.6\nplot '" +
+        csv + "' every ::1 using (bin(column(" + std::to_string(cycle[0]) +
+        "))):(1) smooth frequency with boxes title 'cycle time'";
     run("cycle_time_histogram.png", plot);
   }
   return written;

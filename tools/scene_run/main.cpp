@@ -33,13 +33,17 @@ bool plot(const std::string& csv, const std::string& png, const std::string& tit
                "set logscale y\nset ylabel 'task error'\nplot ",
                png.c_str(), title.c_str());
   for (int i = 0; i < ntasks; ++i) {
-    std::fprintf(gp, "%s'%s' every ::1 using 1:(column(%d) > 0 ? column(%d) : 1/0) with lines lw 2 title columnhead(%d)",
-                 i ? ", " : "", csv.c_str(), 5 + i, 5 + i, 5 + i);
+    std::fprintf(
+        gp,
+        "%s'%s' every ::1 using 1:(column(%d) > 0 ? column(%d) : 1/0) with lines lw 2 title columnhead(%d)",
+        i ? ", " : "", csv.c_str(), 5 + i, 5 + i, 5 + i);
   }
   std::fprintf(gp, "\nunset logscale y\nset ylabel 'contact force (N)'\nset xlabel 't (s)'\nplot ");
   for (int i = 0; i < ncontacts; ++i) {
     const int c = 5 + ntasks + 3 * i;
-    std::fprintf(gp, "%s'%s' every ::1 using 1:(sqrt(column(%d)**2 + column(%d)**2 + column(%d)**2)) with lines title columnhead(%d)",
+    std::fprintf(gp,
+                 "%s'%s' every ::1 using 1:(sqrt(column(%d)**2 + column(%d)**2 + column(%d)**2)) with lines "
+                 "title columnhead(%d)",
                  i ? ", " : "", csv.c_str(), c, c + 1, c + 2, c);
   }
   std::fprintf(gp, "\nunset multiplot\n");
@@ -119,7 +123,8 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     p.update();
     const auto st = p.solve();
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
     worst_us = std::max(worst_us, us);
     if (st != mrqp::qp::QpStatus::Optimal) {
       std::fprintf(stderr, "mrqp-scene: t = %.3f s: the QP failed (status %d): stopping\n", t,
@@ -139,7 +144,8 @@ int main(int argc, char** argv) {
     p.integrate(dt);
   }
   std::printf("mrqp-scene: done; final task errors:\n");
-  for (const auto& [name, id] : scene.tasks) std::printf("  %-16s %.3g\n", name.c_str(), p.taskError(id).norm());
+  for (const auto& [name, id] : scene.tasks)
+    std::printf("  %-16s %.3g\n", name.c_str(), p.taskError(id).norm());
   std::printf("  slowest cycle %.0f µs (wall clock, this machine)\n", worst_us);
   if (!png_file.empty()) {
     csv.close();

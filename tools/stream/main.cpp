@@ -27,10 +27,10 @@ struct Options {
   double rate = 250.0;
   long cycles = 2000;
   std::string yaml;
-  double amplitude = 0.2;      ///< rad
-  double frequency = 0.5;      ///< Hz
-  double max_error = 0.1;      ///< rad, tracking error bound
-  int expect_heartbeat_loss = 0;  ///< node whose heartbeat loss is expected (and required)
+  double amplitude = 0.2;             ///< rad
+  double frequency = 0.5;             ///< Hz
+  double max_error = 0.1;             ///< rad, tracking error bound
+  int expect_heartbeat_loss = 0;      ///< node whose heartbeat loss is expected (and required)
   double heartbeat_loss_after = 0.0;  ///< s after streaming starts: earliest expected stop
   int heartbeat_timeout_ms = 250;
   int sdo_timeout_ms = 100;  ///< per SDO request during boot (a slow emulated target needs more)
@@ -39,18 +39,17 @@ struct Options {
   bool quiet = false;
 };
 
-void usage()
-{
+void usage() {
   std::fprintf(stderr,
                "usage: mrqp-stream [--interface IF] [--nodes 1-7|1,2,3] [--rate HZ] [--cycles N]\n"
                "       [--config EMU.yaml] [--amplitude RAD] [--frequency HZ] [--max-error RAD]\n"
-               "       [--heartbeat-ms MS] [--heartbeat-timeout-ms MS] [--sdo-timeout-ms MS] [--feedback-missing-cycles N]\n"
+               "       [--heartbeat-ms MS] [--heartbeat-timeout-ms MS] [--sdo-timeout-ms MS] "
+               "[--feedback-missing-cycles N]\n"
                "       [--expect-heartbeat-loss NODE] [--quiet]\n"
                "--config reads nodes and scales from a mrqp-drive-emu YAML file.\n");
 }
 
-bool parse_nodes(const std::string& s, std::vector<std::uint8_t>* out)
-{
+bool parse_nodes(const std::string& s, std::vector<std::uint8_t>* out) {
   std::size_t pos = 0;
   while (pos < s.size()) {
     std::size_t end = s.find(',', pos);
@@ -72,8 +71,7 @@ bool parse_nodes(const std::string& s, std::vector<std::uint8_t>* out)
   return !out->empty();
 }
 
-void add_ns(timespec* t, TimeNs ns)
-{
+void add_ns(timespec* t, TimeNs ns) {
   t->tv_nsec += ns;
   while (t->tv_nsec >= 1000000000L) {
     t->tv_nsec -= 1000000000L;
@@ -85,8 +83,7 @@ TimeNs to_ns(const timespec& t) { return static_cast<TimeNs>(t.tv_sec) * 1000000
 
 }  // namespace
 
-int main(int argc, char** argv)
-{
+int main(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -137,9 +134,11 @@ int main(int argc, char** argv)
       return 2;
     }
   }
-  if (!(o.rate > 0.0 && o.rate <= 10000.0) || o.cycles <= 0 || o.heartbeat_ms <= 0 || o.heartbeat_timeout_ms <= 0 || o.sdo_timeout_ms <= 0 ||
-      o.feedback_missing_cycles <= 0) {
-    std::fprintf(stderr, "mrqp-stream: --rate must be 0..10000 Hz; --cycles, heartbeat times, --feedback-missing-cycles > 0\n");
+  if (!(o.rate > 0.0 && o.rate <= 10000.0) || o.cycles <= 0 || o.heartbeat_ms <= 0 ||
+      o.heartbeat_timeout_ms <= 0 || o.sdo_timeout_ms <= 0 || o.feedback_missing_cycles <= 0) {
+    std::fprintf(stderr,
+                 "mrqp-stream: --rate must be 0..10000 Hz; --cycles, heartbeat times, "
+                 "--feedback-missing-cycles > 0\n");
     return 2;
   }
 
@@ -201,7 +200,8 @@ int main(int argc, char** argv)
     }
   }
   if (o.expect_heartbeat_loss != 0 && hb_drive < 0) {
-    std::fprintf(stderr, "mrqp-stream: --expect-heartbeat-loss %d: not a streamed node\n", o.expect_heartbeat_loss);
+    std::fprintf(stderr, "mrqp-stream: --expect-heartbeat-loss %d: not a streamed node\n",
+                 o.expect_heartbeat_loss);
     return 2;
   }
 
@@ -248,8 +248,8 @@ int main(int argc, char** argv)
     ++boot_cycles;
   }
   if (arm->phase() != ArmPhase::Running) {
-    std::printf("mrqp-stream: FAIL: boot ended in phase %s after %ld cycles, flags %s\n", arm_phase_str(arm->phase()),
-                boot_cycles, fault_flags_str(all_flags).c_str());
+    std::printf("mrqp-stream: FAIL: boot ended in phase %s after %ld cycles, flags %s\n",
+                arm_phase_str(arm->phase()), boot_cycles, fault_flags_str(all_flags).c_str());
     return 1;
   }
   arm->request_enable(now);
@@ -274,8 +274,8 @@ int main(int argc, char** argv)
     sent[j] = q0[j];
   }
 
-  const std::uint32_t hard = fault::kFeedbackMissing | fault::kDeviceFault | fault::kBootFailed | fault::kTimeout |
-                             fault::kHeartbeatLost | fault::kStateMismatch | fault::kBusOff;
+  const std::uint32_t hard = fault::kFeedbackMissing | fault::kDeviceFault | fault::kBootFailed |
+                             fault::kTimeout | fault::kHeartbeatLost | fault::kStateMismatch | fault::kBusOff;
   const TimeNs stream_start = now;
   const double w = 2.0 * M_PI * o.frequency;
   for (long k = 0; k < o.cycles; ++k) {
@@ -324,28 +324,31 @@ int main(int argc, char** argv)
   }
   // Summary.
   const FaultReport& fin = arm->faults();
-  std::printf("mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
-              o.cycles, o.rate, static_cast<unsigned long long>(frames_sent),
-              static_cast<unsigned long long>(overruns), static_cast<double>(worst_late) / 1000.0);
+  std::printf(
+      "mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
+      o.cycles, o.rate, static_cast<unsigned long long>(frames_sent),
+      static_cast<unsigned long long>(overruns), static_cast<double>(worst_late) / 1000.0);
   std::uint64_t emcy_total = 0;
   std::uint64_t corrupt_total = 0;
   for (std::size_t j = 0; j < n; ++j) {
     const DeviceFaults& df = fin.devices[j];
     emcy_total += df.emcy_count;
     corrupt_total += df.corrupt_frames;
-    std::printf("mrqp-stream: node %u: max_error=%.5f rad emcy_count=%u emcy_code=0x%04x corrupt_frames=%u "
-                "heartbeat_lost_cycles=%llu heartbeat_lost_at_ms=%.1f\n",
-                cfg.drives[j].node, max_err[j], df.emcy_count, df.emcy_code, df.corrupt_frames,
-                static_cast<unsigned long long>(hb_lost[j]),
-                hb_lost_at[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at[j]) / 1e6);
+    std::printf(
+        "mrqp-stream: node %u: max_error=%.5f rad emcy_count=%u emcy_code=0x%04x corrupt_frames=%u "
+        "heartbeat_lost_cycles=%llu heartbeat_lost_at_ms=%.1f\n",
+        cfg.drives[j].node, max_err[j], df.emcy_count, df.emcy_code, df.corrupt_frames,
+        static_cast<unsigned long long>(hb_lost[j]),
+        hb_lost_at[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at[j]) / 1e6);
   }
   const BusFaults& bf = fin.buses[0];
-  std::printf("mrqp-stream: counters: emcy=%llu corrupt_frames=%llu unknown_frames=%llu rejected_frames=%llu "
-              "bus_error_events=%llu tx_queue_full=%llu\n",
-              static_cast<unsigned long long>(emcy_total), static_cast<unsigned long long>(corrupt_total),
-              static_cast<unsigned long long>(bf.unknown_total), static_cast<unsigned long long>(bf.rejected_total),
-              static_cast<unsigned long long>(bf.error_events_total),
-              static_cast<unsigned long long>(bf.tx_queue_full_total));
+  std::printf(
+      "mrqp-stream: counters: emcy=%llu corrupt_frames=%llu unknown_frames=%llu rejected_frames=%llu "
+      "bus_error_events=%llu tx_queue_full=%llu\n",
+      static_cast<unsigned long long>(emcy_total), static_cast<unsigned long long>(corrupt_total),
+      static_cast<unsigned long long>(bf.unknown_total), static_cast<unsigned long long>(bf.rejected_total),
+      static_cast<unsigned long long>(bf.error_events_total),
+      static_cast<unsigned long long>(bf.tx_queue_full_total));
   std::printf("mrqp-stream: flags seen: %s\n", fault_flags_str(all_flags).c_str());
   bool ok = fail_cycles == 0;
   if (!ok) {
@@ -354,13 +357,16 @@ int main(int argc, char** argv)
   }
   if (hb_drive >= 0) {
     if (hb_lost_at[static_cast<std::size_t>(hb_drive)] < 0) {
-      std::printf("mrqp-stream: FAIL: heartbeat loss of node %d expected, not detected\n", o.expect_heartbeat_loss);
+      std::printf("mrqp-stream: FAIL: heartbeat loss of node %d expected, not detected\n",
+                  o.expect_heartbeat_loss);
       ok = false;
     } else {
       const auto hj = static_cast<std::size_t>(hb_drive);
-      std::printf("mrqp-stream: heartbeat loss of node %d detected at %.1f ms of streaming, wall %.6f, timeout %d ms\n",
-                  o.expect_heartbeat_loss, static_cast<double>(hb_lost_at[hj]) / 1e6, hb_lost_wall[hj],
-                  o.heartbeat_timeout_ms);
+      std::printf(
+          "mrqp-stream: heartbeat loss of node %d detected at %.1f ms of streaming, wall %.6f, timeout %d "
+          "ms\n",
+          o.expect_heartbeat_loss, static_cast<double>(hb_lost_at[hj]) / 1e6, hb_lost_wall[hj],
+          o.heartbeat_timeout_ms);
     }
   }
   std::printf("mrqp-stream: %s\n", ok ? "PASS" : "FAIL");

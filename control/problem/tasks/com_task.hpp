@@ -22,7 +22,9 @@ class ComTask final : public Task {
   bool setTarget(const Eigen::Vector3d& target) noexcept override;
 
   std::uint32_t entityMask() const noexcept { return mask_; }
-  bool involves(int entity) const noexcept { return entity >= 0 && entity < 32 && ((mask_ >> entity) & 1u) != 0; }
+  bool involves(int entity) const noexcept {
+    return entity >= 0 && entity < 32 && ((mask_ >> entity) & 1u) != 0;
+  }
   const Eigen::Vector3d& target() const noexcept { return target_; }
 
  private:

@@ -29,8 +29,10 @@ FrameTask::FrameTask(Rows rows, int entity, int frame, const Eigen::Vector3d& po
 
 const char* FrameTask::check(const MultiRobotProblem& p) const noexcept {
   if (entity_ < 0 || entity_ >= p.entityCount()) return "a task names an entity that does not exist";
-  if (frame_ < 0 || frame_ >= p.entity(entity_).frameCount()) return "a frame task names a frame that does not exist";
-  if (!point_.allFinite() || !target_.allFinite() || !target_R_.allFinite()) return "a frame task's point or target is not finite";
+  if (frame_ < 0 || frame_ >= p.entity(entity_).frameCount())
+    return "a frame task names a frame that does not exist";
+  if (!point_.allFinite() || !target_.allFinite() || !target_R_.allFinite())
+    return "a frame task's point or target is not finite";
   return nullptr;
 }
 

@@ -11,7 +11,8 @@ PostureTask::PostureTask(int entity, int joints)
 const char* PostureTask::check(const MultiRobotProblem& p) const noexcept {
   if (entity_ < 0 || entity_ >= p.entityCount()) return "a task names an entity that does not exist";
   const Entity& e = p.entity(entity_);
-  if (target_.size() != e.nv() - e.jointOffset()) return "a posture task's size is not its entity's joint count";
+  if (target_.size() != e.nv() - e.jointOffset())
+    return "a posture task's size is not its entity's joint count";
   return nullptr;
 }
 

@@ -30,7 +30,8 @@ void build(const SceneSpec& s, const BuildContext& ctx, problem::MultiRobotProbl
     const ComDamperSpec& ds = s.com_dampers[i];
     const std::string field = "com_dampers[" + std::to_string(i) + "]";
     const int entity = ctx.entity(ds.entity, ds.source, field + ".entity");
-    if (p.addConstraint(std::make_unique<problem::ComDamper>(entity, ds.interaction, ds.security, ds.damping)) < 0) {
+    if (p.addConstraint(
+            std::make_unique<problem::ComDamper>(entity, ds.interaction, ds.security, ds.damping)) < 0) {
       BuildContext::fail(ds.source, field, p.lastError());
     }
   }
@@ -38,6 +39,8 @@ void build(const SceneSpec& s, const BuildContext& ctx, problem::MultiRobotProbl
 
 }  // namespace
 
-ConstraintKindEntry comDamperKind() { return {"com_dampers", "entity", "com_damper for entity", read, reserve, build}; }
+ConstraintKindEntry comDamperKind() {
+  return {"com_dampers", "entity", "com_damper for entity", read, reserve, build};
+}
 
 }  // namespace mrqp::scene

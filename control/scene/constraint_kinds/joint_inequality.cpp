@@ -37,7 +37,8 @@ std::string read(const Reader& r, const YAML::Node& n, const std::string& path, 
     const JointInequalitySpec::Term t = readTerm(r, items[i], item(m.at("terms"), i));
     for (const JointInequalitySpec::Term& u : j.terms) {
       if (u.entity == t.entity && u.joint == t.joint) {
-        r.fail(items[i], item(m.at("terms"), i), "joint '" + t.joint + "' of '" + t.entity + "' appears twice");
+        r.fail(items[i], item(m.at("terms"), i),
+               "joint '" + t.joint + "' of '" + t.entity + "' appears twice");
       }
     }
     j.terms.push_back(t);

@@ -36,7 +36,8 @@ Resolved resolve(const TaskSpec& ts, const BuildContext& ctx, const std::string&
   return r;
 }
 
-std::unique_ptr<problem::Task> makePosition(const TaskSpec& ts, const BuildContext& ctx, const std::string& field) {
+std::unique_ptr<problem::Task> makePosition(const TaskSpec& ts, const BuildContext& ctx,
+                                            const std::string& field) {
   const Resolved r = resolve(ts, ctx, field);
   const Eigen::Vector3d target = ts.target ? Eigen::Vector3d(ts.target->head<3>()) : r.position;
   auto task = std::make_unique<problem::FramePositionTask>(r.entity, r.frame, ts.point, target, r.rotation);
@@ -53,7 +54,8 @@ std::unique_ptr<problem::Task> makeOrientation(const TaskSpec& ts, const BuildCo
   return task;
 }
 
-std::unique_ptr<problem::Task> makePose(const TaskSpec& ts, const BuildContext& ctx, const std::string& field) {
+std::unique_ptr<problem::Task> makePose(const TaskSpec& ts, const BuildContext& ctx,
+                                        const std::string& field) {
   const Resolved r = resolve(ts, ctx, field);
   Eigen::Vector3d p = r.position;
   Eigen::Matrix3d R = r.rotation;
@@ -76,7 +78,8 @@ std::unique_ptr<problem::Task> makePose(const TaskSpec& ts, const BuildContext& 
 }  // namespace
 
 TaskKindEntry framePositionKind() {
-  return {"frame_position", 3, {{"entity", "frame", "point", "target"}}, false, readSubject, nullptr, makePosition};
+  return {"frame_position", 3,           {{"entity", "frame", "point", "target"}}, false, readSubject,
+          nullptr,          makePosition};
 }
 
 TaskKindEntry frameOrientationKind() {

@@ -28,7 +28,8 @@ std::unique_ptr<problem::Task> make(const TaskSpec& ts, const BuildContext& ctx,
 }  // namespace
 
 TaskKindEntry postureKind() {
-  return {"posture", -1, {{"entity", "target", nullptr, nullptr}}, false, readEntitySubject, readTarget, make};
+  return {"posture",  -1,  {{"entity", "target", nullptr, nullptr}}, false, readEntitySubject,
+          readTarget, make};
 }
 
 }  // namespace mrqp::scene

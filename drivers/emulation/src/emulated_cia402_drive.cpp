@@ -11,16 +11,12 @@ namespace mrqp::emulation {
 namespace {
 constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
 
-TimeNs ms(std::uint32_t v) noexcept
-{
-  return static_cast<TimeNs>(v) * 1000000;
-}
+TimeNs ms(std::uint32_t v) noexcept { return static_cast<TimeNs>(v) * 1000000; }
 }  // namespace
 
 void EmulatedCia402Drive::Host::on_nmt_reset(bool) noexcept {}
 
-void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept
-{
+void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept {
   if (silent_) {
     return;
   }
@@ -32,33 +28,31 @@ void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept
 }
 
 EmulatedCia402Drive::EmulatedCia402Drive(Host& host, const Options& options) noexcept
-    : host_(host), options_(options)
-{
+    : host_(host), options_(options) {
   reset_od(false);
   boot_at_ = options_.boot_delay;  // power-on: initialisation, then the boot-up message
 }
 
-void EmulatedCia402Drive::reset_od(bool communication_only) noexcept
-{
+void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
   const std::uint32_t n = options_.node;
   const Entry comm[] = {
-      {0x1000, 0, 4, false, 0x00020192u},          // device type: CiA 402 drive
-      {0x1006, 0, 4, true, 0},                     // communication cycle period
-      {0x1016, 0, 1, false, 1},                    // consumer heartbeat: one entry
+      {0x1000, 0, 4, false, 0x00020192u},  // device type: CiA 402 drive
+      {0x1006, 0, 4, true, 0},             // communication cycle period
+      {0x1016, 0, 1, false, 1},            // consumer heartbeat: one entry
       {0x1016, 1, 4, true, 0},
-      {0x1017, 0, 2, true, 0},                     // producer heartbeat time
-      {0x1400, 1, 4, true, 0x200u + n},            // RPDO1: valid by default...
+      {0x1017, 0, 2, true, 0},           // producer heartbeat time
+      {0x1400, 1, 4, true, 0x200u + n},  // RPDO1: valid by default...
       {0x1400, 2, 1, true, 0xFF},
-      {0x1600, 0, 1, true, 1},                     // ... mapping only the controlword
+      {0x1600, 0, 1, true, 1},  // ... mapping only the controlword
       {0x1600, 1, 4, true, 0x60400010u},
       {0x1600, 2, 4, true, 0},
       {0x1600, 3, 4, true, 0},
       {0x1600, 4, 4, true, 0},
-      {0x1800, 1, 4, true, 0x180u + n},            // TPDO1: valid, asynchronous, statusword only
+      {0x1800, 1, 4, true, 0x180u + n},  // TPDO1: valid, asynchronous, statusword only
       {0x1800, 2, 1, true, 0xFF},
       {0x1801, 1, 4, true, kPdoInvalid | (0x280u + n)},
       {0x1801, 2, 1, true, 0xFF},
-      {0x1802, 1, 4, true, 0x380u + n},            // TPDO3/4 valid by default: must be disabled
+      {0x1802, 1, 4, true, 0x380u + n},  // TPDO3/4 valid by default: must be disabled
       {0x1802, 2, 1, true, 0xFF},
       {0x1803, 1, 4, true, 0x480u + n},
       {0x1803, 2, 1, true, 0xFF},
@@ -96,8 +90,7 @@ void EmulatedCia402Drive::reset_od(bool communication_only) noexcept
   }
 }
 
-EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) noexcept
-{
+EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) noexcept {
   for (std::size_t i = 0; i < od_count_; ++i) {
     if (od_[i].index == index && od_[i].sub == sub) {
       return &od_[i];
@@ -106,8 +99,8 @@ EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::
   return nullptr;
 }
 
-const EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) const noexcept
-{
+const EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index,
+                                                            std::uint8_t sub) const noexcept {
   for (std::size_t i = 0; i < od_count_; ++i) {
     if (od_[i].index == index && od_[i].sub == sub) {
       return &od_[i];
@@ -116,8 +109,7 @@ const EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index,
   return nullptr;
 }
 
-bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept
-{
+bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept {
   for (std::size_t i = 0; i < od_count_; ++i) {
     if (od_[i].index == index) {
       return true;
@@ -126,14 +118,12 @@ bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept
   return false;
 }
 
-std::uint32_t EmulatedCia402Drive::od_value(std::uint16_t index, std::uint8_t sub) const noexcept
-{
+std::uint32_t EmulatedCia402Drive::od_value(std::uint16_t index, std::uint8_t sub) const noexcept {
   const Entry* e = find(index, sub);
   return e != nullptr ? e->value : 0u;
 }
 
-bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept
-{
+bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept {
   const Entry* e = find(index, sub);
   if (e == nullptr) {
     return false;
@@ -143,8 +133,7 @@ bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_
 }
 
 bool EmulatedCia402Drive::pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob,
-                                 mrqp_fw_arm_pdo which) const noexcept
-{
+                                 mrqp_fw_arm_pdo which) const noexcept {
   if (od_value(comm, 1) != cob || od_value(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
     return false;
   }
@@ -161,26 +150,21 @@ bool EmulatedCia402Drive::pdo_ok(std::uint16_t comm, std::uint16_t map, std::uin
   return true;
 }
 
-bool EmulatedCia402Drive::rpdo1_configured() const noexcept
-{
+bool EmulatedCia402Drive::rpdo1_configured() const noexcept {
   return pdo_ok(0x1400, 0x1600, MRQP_FW_COB_RPDO1_BASE + options_.node, MRQP_FW_ARM_RPDO1);
 }
-bool EmulatedCia402Drive::tpdo1_configured() const noexcept
-{
+bool EmulatedCia402Drive::tpdo1_configured() const noexcept {
   return pdo_ok(0x1800, 0x1A00, MRQP_FW_COB_TPDO1_BASE + options_.node, MRQP_FW_ARM_TPDO1);
 }
-bool EmulatedCia402Drive::tpdo2_configured() const noexcept
-{
+bool EmulatedCia402Drive::tpdo2_configured() const noexcept {
   return pdo_ok(0x1801, 0x1A01, MRQP_FW_COB_TPDO2_BASE + options_.node, MRQP_FW_ARM_TPDO2);
 }
 
-TimeNs EmulatedCia402Drive::next_event() const noexcept
-{
+TimeNs EmulatedCia402Drive::next_event() const noexcept {
   return boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
 }
 
-void EmulatedCia402Drive::power_on(TimeNs now) noexcept
-{
+void EmulatedCia402Drive::power_on(TimeNs now) noexcept {
   nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
   state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
   reset_od(false);
@@ -188,15 +172,13 @@ void EmulatedCia402Drive::power_on(TimeNs now) noexcept
   boot_at_ = now + options_.boot_delay;
 }
 
-void EmulatedCia402Drive::abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept
-{
+void EmulatedCia402Drive::abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
   abort_index_ = index;
   abort_sub_ = sub;
   abort_code_ = code;
 }
 
-void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept
-{
+void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept {
   state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT, nullptr);
   error_code_ = code;
   mrqp_fw_emcy e{};
@@ -208,8 +190,7 @@ void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_reg
   }
 }
 
-void EmulatedCia402Drive::advance(TimeNs now) noexcept
-{
+void EmulatedCia402Drive::advance(TimeNs now) noexcept {
   if (boot_at_ <= now) {
     // End of initialisation: boot-up message, then pre-operational.
     boot_at_ = kNever;
@@ -237,8 +218,7 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept
   }
 }
 
-EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id == MRQP_FW_COB_NMT) {
     on_nmt(f, now);
     return Received::Nmt;
@@ -271,8 +251,7 @@ EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame&
   return Received::Nothing;
 }
 
-void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
   mrqp_fw_nmt_cmd cmd;
   std::uint8_t target = 0;
   if (mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || !mrqp_fw_nmt_addresses(target, options_.node)) {
@@ -297,8 +276,7 @@ void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept
   nmt_ = next;
 }
 
-std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) const noexcept
-{
+std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) const noexcept {
   if (!e.writable) {
     return MRQP_FW_SDO_ABORT_READ_ONLY;
   }
@@ -318,8 +296,9 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
       for (std::uint32_t k = 1; k <= v && k <= 4u; ++k) {
         const std::uint32_t entry = od_value(i, static_cast<std::uint8_t>(k));
         const std::uint16_t obj = static_cast<std::uint16_t>(entry >> 16);
-        if (entry == 0u || !(obj == 0x6040 || obj == 0x6041 || obj == 0x607A || obj == 0x6064 || obj == 0x6071 ||
-                             obj == 0x6077 || obj == 0x606C || obj == 0x603F || obj == 0x6061)) {
+        if (entry == 0u ||
+            !(obj == 0x6040 || obj == 0x6041 || obj == 0x607A || obj == 0x6064 || obj == 0x6071 ||
+              obj == 0x6077 || obj == 0x606C || obj == 0x603F || obj == 0x6061)) {
           return MRQP_FW_SDO_ABORT_NOT_MAPPABLE;
         }
         bits += entry & 0xFFu;
@@ -343,8 +322,7 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
   return 0u;
 }
 
-void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
   const TimeNs at = now + options_.response_delay;
   mrqp_fw_sdo_msg m;
   mrqp_fw_frame out;
@@ -401,8 +379,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept
   send(out, at, false);
 }
 
-void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
-{
+void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
   const TimeNs at = now + options_.response_delay;
   ++syncs_;
   // Fault reaction completes at the next SYNC.
@@ -429,7 +406,8 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept
   }
   mrqp_fw_frame f;
   if (tpdo1_configured()) {
-    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, MRQP_FW_SW_VOLTAGE_ENABLED), fb.position, fb.torque};
+    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, MRQP_FW_SW_VOLTAGE_ENABLED), fb.position,
+                              fb.torque};
     (void)mrqp_fw_arm_pack_tpdo1(options_.node, &t, &f);
     send(f, at, true);
   }

@@ -5,10 +5,10 @@
 
 namespace mrqp::emulation {
 
-EmulatedFtSensor::EmulatedFtSensor(Host& host, const Options& options) noexcept : host_(host), options_(options) {}
+EmulatedFtSensor::EmulatedFtSensor(Host& host, const Options& options) noexcept
+    : host_(host), options_(options) {}
 
-bool EmulatedFtSensor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+bool EmulatedFtSensor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if ((f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return false;
   }
@@ -31,8 +31,7 @@ bool EmulatedFtSensor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
   return true;
 }
 
-void EmulatedFtSensor::sample(TimeNs now) noexcept
-{
+void EmulatedFtSensor::sample(TimeNs now) noexcept {
   if (!stale_ || !have_last_) {
     last_ = host_.wrench(now);
     have_last_ = true;

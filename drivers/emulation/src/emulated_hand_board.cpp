@@ -4,15 +4,13 @@
 namespace mrqp::emulation {
 
 EmulatedHandBoard::EmulatedHandBoard(JointHost& host, const Options& options) noexcept
-    : host_(host), options_(options)
-{
+    : host_(host), options_(options) {
   if (options_.joints > MRQP_FW_HAND_MAX_JOINTS) {
     options_.joints = MRQP_FW_HAND_MAX_JOINTS;
   }
 }
 
-std::uint8_t EmulatedHandBoard::status() const noexcept
-{
+std::uint8_t EmulatedHandBoard::status() const noexcept {
   unsigned st = 0;
   if (mode_ != MRQP_FW_HAND_MODE_DISABLED) {
     st |= MRQP_FW_HAND_STATUS_ENABLED;
@@ -29,16 +27,14 @@ std::uint8_t EmulatedHandBoard::status() const noexcept
   return static_cast<std::uint8_t>(st);
 }
 
-void EmulatedHandBoard::servo_off(TimeNs now) noexcept
-{
+void EmulatedHandBoard::servo_off(TimeNs now) noexcept {
   for (std::size_t j = 0; j < options_.joints; ++j) {
     servo_[j] = ServoCommand{};
     host_.command(options_.joint + j, servo_[j], now);
   }
 }
 
-void EmulatedHandBoard::set_mode(std::uint8_t mode, TimeNs now) noexcept
-{
+void EmulatedHandBoard::set_mode(std::uint8_t mode, TimeNs now) noexcept {
   if (mode == MRQP_FW_HAND_MODE_HOLD && mode_ != MRQP_FW_HAND_MODE_HOLD) {
     for (std::size_t j = 0; j < options_.joints; ++j) {
       ServoCommand s;
@@ -55,8 +51,7 @@ void EmulatedHandBoard::set_mode(std::uint8_t mode, TimeNs now) noexcept
   mode_ = mode;
 }
 
-void EmulatedHandBoard::power_on(TimeNs now) noexcept
-{
+void EmulatedHandBoard::power_on(TimeNs now) noexcept {
   faulted_ = false;
   timed_out_ = false;
   crc_error_seen_ = false;
@@ -67,31 +62,28 @@ void EmulatedHandBoard::power_on(TimeNs now) noexcept
   servo_off(now);
 }
 
-void EmulatedHandBoard::raise_fault(TimeNs now) noexcept
-{
+void EmulatedHandBoard::raise_fault(TimeNs now) noexcept {
   faulted_ = true;
   mode_ = MRQP_FW_HAND_MODE_DISABLED;
   servo_off(now);
 }
 
-TimeNs EmulatedHandBoard::next_event() const noexcept
-{
-  if (options_.command_timeout <= 0 || mode_ == MRQP_FW_HAND_MODE_DISABLED || mode_ == MRQP_FW_HAND_MODE_HOLD) {
+TimeNs EmulatedHandBoard::next_event() const noexcept {
+  if (options_.command_timeout <= 0 || mode_ == MRQP_FW_HAND_MODE_DISABLED ||
+      mode_ == MRQP_FW_HAND_MODE_HOLD) {
     return kNever;
   }
   return last_command_ + options_.command_timeout;
 }
 
-void EmulatedHandBoard::advance(TimeNs now) noexcept
-{
+void EmulatedHandBoard::advance(TimeNs now) noexcept {
   if (next_event() <= now) {
     timed_out_ = true;
     set_mode(MRQP_FW_HAND_MODE_HOLD, now);
   }
 }
 
-bool EmulatedHandBoard::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
+bool EmulatedHandBoard::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id != MRQP_FW_HAND_FD_CMD_ID_BASE + options_.board || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return false;
   }

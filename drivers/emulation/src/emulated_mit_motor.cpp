@@ -4,33 +4,28 @@
 namespace mrqp::emulation {
 
 EmulatedMitMotor::EmulatedMitMotor(JointHost& host, const Options& options) noexcept
-    : host_(host), options_(options)
-{
-}
+    : host_(host), options_(options) {}
 
-void EmulatedMitMotor::power_on(TimeNs now) noexcept
-{
+void EmulatedMitMotor::power_on(TimeNs now) noexcept {
   faulted_ = false;
   zero_ = 0.0;
   have_last_ = false;
   set_servo(ServoCommand{}, now);
 }
 
-void EmulatedMitMotor::raise_fault(TimeNs now) noexcept
-{
+void EmulatedMitMotor::raise_fault(TimeNs now) noexcept {
   faulted_ = true;
   set_servo(ServoCommand{}, now);
 }
 
-void EmulatedMitMotor::set_servo(const ServoCommand& s, TimeNs now) noexcept
-{
+void EmulatedMitMotor::set_servo(const ServoCommand& s, TimeNs now) noexcept {
   servo_ = s;
   host_.command(options_.joint, servo_, now);
 }
 
-bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
-{
-  if (f.id != options_.motor_id || (f.flags & (MRQP_FW_FRAME_EXT | MRQP_FW_FRAME_RTR | MRQP_FW_FRAME_FD)) != 0u) {
+bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+  if (f.id != options_.motor_id ||
+      (f.flags & (MRQP_FW_FRAME_EXT | MRQP_FW_FRAME_RTR | MRQP_FW_FRAME_FD)) != 0u) {
     return false;
   }
   const mrqp_fw_mit_kind kind = mrqp_fw_mit_classify(&f);
@@ -42,34 +37,34 @@ bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept
     return true;
   }
   switch (kind) {
-  case MRQP_FW_MIT_KIND_ENABLE: {
-    ServoCommand s;
-    s.enabled = true;  // no gains, no torque until the first command
-    set_servo(s, now);
-    break;
-  }
-  case MRQP_FW_MIT_KIND_DISABLE:
-    set_servo(ServoCommand{}, now);
-    break;
-  case MRQP_FW_MIT_KIND_ZERO:
-    zero_ = host_.measure(options_.joint, now).position;
-    break;
-  case MRQP_FW_MIT_KIND_COMMAND: {
-    mrqp_fw_mit_cmd c;
-    if (servo_.enabled && mrqp_fw_mit_unpack_cmd(&options_.ranges, &f, nullptr, &c) == MRQP_FW_OK) {
+    case MRQP_FW_MIT_KIND_ENABLE: {
       ServoCommand s;
-      s.position = static_cast<double>(c.p) + zero_;
-      s.velocity = static_cast<double>(c.v);
-      s.torque = static_cast<double>(c.t);
-      s.kp = static_cast<double>(c.kp);
-      s.kd = static_cast<double>(c.kd);
-      s.enabled = true;
+      s.enabled = true;  // no gains, no torque until the first command
       set_servo(s, now);
+      break;
     }
-    break;
-  }
-  case MRQP_FW_MIT_KIND_INVALID:
-    break;
+    case MRQP_FW_MIT_KIND_DISABLE:
+      set_servo(ServoCommand{}, now);
+      break;
+    case MRQP_FW_MIT_KIND_ZERO:
+      zero_ = host_.measure(options_.joint, now).position;
+      break;
+    case MRQP_FW_MIT_KIND_COMMAND: {
+      mrqp_fw_mit_cmd c;
+      if (servo_.enabled && mrqp_fw_mit_unpack_cmd(&options_.ranges, &f, nullptr, &c) == MRQP_FW_OK) {
+        ServoCommand s;
+        s.position = static_cast<double>(c.p) + zero_;
+        s.velocity = static_cast<double>(c.v);
+        s.torque = static_cast<double>(c.t);
+        s.kp = static_cast<double>(c.kp);
+        s.kd = static_cast<double>(c.kd);
+        s.enabled = true;
+        set_servo(s, now);
+      }
+      break;
+    }
+    case MRQP_FW_MIT_KIND_INVALID:
+      break;
   }
   if (!stale_ || !have_last_) {
     last_ = host_.measure(options_.joint, now);

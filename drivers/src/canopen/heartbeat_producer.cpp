@@ -5,15 +5,13 @@
 
 namespace mrqp::drivers {
 
-void HeartbeatProducer::init(std::uint8_t node, std::uint16_t period_ms) noexcept
-{
+void HeartbeatProducer::init(std::uint8_t node, std::uint16_t period_ms) noexcept {
   node_ = node;
   period_ = milliseconds(period_ms > 0u ? period_ms : 1);
   next_ = 0;
 }
 
-bool HeartbeatProducer::process(TimeNs now, mrqp_fw_frame* out) noexcept
-{
+bool HeartbeatProducer::process(TimeNs now, mrqp_fw_frame* out) noexcept {
   if (node_ == 0u || now < next_) {
     return false;
   }

@@ -6,16 +6,14 @@
 namespace mrqp::drivers {
 
 namespace {
-mrqp_fw_nmt_cmd boot_command(NmtReset reset) noexcept
-{
-  return reset == NmtReset::Node ? MRQP_FW_NMT_RESET_NODE
+mrqp_fw_nmt_cmd boot_command(NmtReset reset) noexcept {
+  return reset == NmtReset::Node            ? MRQP_FW_NMT_RESET_NODE
          : reset == NmtReset::Communication ? MRQP_FW_NMT_RESET_COMM
                                             : MRQP_FW_NMT_ENTER_PREOP;
 }
 }  // namespace
 
-void NmtBoot::init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexcept
-{
+void NmtBoot::init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexcept {
   node_ = node;
   reset_ = reset;
   boot_timeout_ = boot_timeout;
@@ -25,8 +23,7 @@ void NmtBoot::init(std::uint8_t node, NmtReset reset, TimeNs boot_timeout) noexc
   echoed_ = false;
 }
 
-void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept
-{
+void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept {
   begun_ = true;
   booted_ = reset_ == NmtReset::None;
   sent_ = false;
@@ -35,22 +32,19 @@ void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept
   (void)mrqp_fw_nmt_pack(boot_command(reset_), node_, out);
 }
 
-void NmtBoot::start_remote(TimeNs now, mrqp_fw_frame* out) noexcept
-{
+void NmtBoot::start_remote(TimeNs now, mrqp_fw_frame* out) noexcept {
   commanded_ = now;
   (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, node_, out);
 }
 
-void NmtBoot::sent(TimeNs now) noexcept
-{
+void NmtBoot::sent(TimeNs now) noexcept {
   if (waiting() && !sent_) {
     sent_ = true;
     sent_at_ = now;
   }
 }
 
-bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept
-{
+bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept {
   mrqp_fw_nmt_cmd cmd;
   std::uint8_t target = 0;
   if (!waiting() || mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || cmd != boot_command(reset_) ||
@@ -61,8 +55,7 @@ bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept
   return true;
 }
 
-bool NmtBoot::on_boot_up(TimeNs t) noexcept
-{
+bool NmtBoot::on_boot_up(TimeNs t) noexcept {
   if (!waiting()) {
     return false;
   }
@@ -75,9 +68,6 @@ bool NmtBoot::on_boot_up(TimeNs t) noexcept
   return true;
 }
 
-bool NmtBoot::process(TimeNs now) const noexcept
-{
-  return waiting() && now - commanded_ > boot_timeout_;
-}
+bool NmtBoot::process(TimeNs now) const noexcept { return waiting() && now - commanded_ > boot_timeout_; }
 
 }  // namespace mrqp::drivers

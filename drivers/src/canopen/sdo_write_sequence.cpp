@@ -4,15 +4,13 @@
 
 namespace mrqp::drivers {
 
-void SdoWriteSequence::restart() noexcept
-{
+void SdoWriteSequence::restart() noexcept {
   step_ = 0;
   mrqp_fw_sdo_client_reset(&client_);
   busy_ = false;
 }
 
-SdoWriteSequence::Step SdoWriteSequence::process(TimeNs now, bool start, mrqp_fw_frame* out) noexcept
-{
+SdoWriteSequence::Step SdoWriteSequence::process(TimeNs now, bool start, mrqp_fw_frame* out) noexcept {
   if (busy_) {
     if (now - sent_at_ <= timeout_) {
       return Step::Idle;
@@ -38,27 +36,26 @@ SdoWriteSequence::Step SdoWriteSequence::process(TimeNs now, bool start, mrqp_fw
   return Step::Send;
 }
 
-SdoWriteSequence::Step SdoWriteSequence::on_frame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept
-{
+SdoWriteSequence::Step SdoWriteSequence::on_frame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept {
   if (!busy_) {
     return Step::Unexpected;
   }
   switch (mrqp_fw_sdo_client_on_frame(&client_, &f, out)) {
-  case MRQP_FW_SDO_STEP_DONE:
-    busy_ = false;
-    ++step_;
-    return Step::Done;
-  case MRQP_FW_SDO_STEP_SEND:
-    return Step::Send;
-  case MRQP_FW_SDO_STEP_ABORTED:
-    busy_ = false;
-    return Step::Failed;
-  case MRQP_FW_SDO_STEP_ABORT_SEND:
-    busy_ = false;
-    return Step::FailedSend;
-  case MRQP_FW_SDO_STEP_IGNORED:
-  case MRQP_FW_SDO_STEP_ERROR:
-    break;
+    case MRQP_FW_SDO_STEP_DONE:
+      busy_ = false;
+      ++step_;
+      return Step::Done;
+    case MRQP_FW_SDO_STEP_SEND:
+      return Step::Send;
+    case MRQP_FW_SDO_STEP_ABORTED:
+      busy_ = false;
+      return Step::Failed;
+    case MRQP_FW_SDO_STEP_ABORT_SEND:
+      busy_ = false;
+      return Step::FailedSend;
+    case MRQP_FW_SDO_STEP_IGNORED:
+    case MRQP_FW_SDO_STEP_ERROR:
+      break;
   }
   return Step::Unexpected;
 }

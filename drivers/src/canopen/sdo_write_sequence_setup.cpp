@@ -5,8 +5,7 @@
 
 namespace mrqp::drivers {
 
-void SdoWriteSequence::init(std::uint8_t node, std::vector<SdoWrite> writes, TimeNs sdo_timeout)
-{
+void SdoWriteSequence::init(std::uint8_t node, std::vector<SdoWrite> writes, TimeNs sdo_timeout) {
   node_ = node;
   writes_ = std::move(writes);
   timeout_ = sdo_timeout;

@@ -5,14 +5,12 @@
 
 namespace mrqp::drivers {
 
-void SyncProducer::init(std::uint8_t counter_overflow) noexcept
-{
+void SyncProducer::init(std::uint8_t counter_overflow) noexcept {
   overflow_ = counter_overflow;
   counter_ = 0;
 }
 
-void SyncProducer::process(TimeNs, mrqp_fw_frame* out) noexcept
-{
+void SyncProducer::process(TimeNs, mrqp_fw_frame* out) noexcept {
   if (overflow_ >= 2u) {
     counter_ = mrqp_fw_sync_counter_next(counter_, overflow_);
   }

@@ -102,7 +102,8 @@ struct Parser {
     v.resize(size);
     for (int i = 0; i < size; ++i)
       if (!parseDouble(tok[static_cast<std::size_t>(i) + 1], v(i)))
-        return fail(std::string("bad number '") + tok[static_cast<std::size_t>(i) + 1] + "' in '" + key + "'");
+        return fail(std::string("bad number '") + tok[static_cast<std::size_t>(i) + 1] + "' in '" + key +
+                    "'");
     return true;
   }
   // "<key> <nnz>" followed by nnz "i j v" lines, strictly increasing in (i, j).

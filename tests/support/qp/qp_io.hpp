@@ -37,10 +37,10 @@ struct QpText {
   int n = 0, me = 0, mi = 0;
   Eigen::MatrixXd H, A, C;  ///< H symmetric (both triangles filled)
   Eigen::VectorXd g, b, l, u, xl, xu;
-  double r = 0.0;                ///< constant of the objective
-  bool has_objective = false;    ///< whether a reference objective was given
-  double objective = 0.0;        ///< reference optimal value of ½xᵀHx + gᵀx + r
-  int posdef = -1;               ///< 1 / 0 from the file, -1 when absent
+  double r = 0.0;              ///< constant of the objective
+  bool has_objective = false;  ///< whether a reference objective was given
+  double objective = 0.0;      ///< reference optimal value of ½xᵀHx + gᵀx + r
+  int posdef = -1;             ///< 1 / 0 from the file, -1 when absent
 };
 
 /// Parses the text format. On failure returns false and sets `error` ("line N: ...").

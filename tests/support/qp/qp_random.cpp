@@ -38,8 +38,10 @@ bool generateRandomQp(const RandomQpSpec& spec, std::mt19937_64& rng, QpProblem&
     double lo = cx(i) - (0.1 + U(rng)) * scale;
     double up = cx(i) + (0.1 + U(rng)) * scale;
     const double pick = U(rng);
-    if (pick < spec.one_sided) lo = -inf;
-    else if (pick < 2.0 * spec.one_sided) up = inf;
+    if (pick < spec.one_sided)
+      lo = -inf;
+    else if (pick < 2.0 * spec.one_sided)
+      up = inf;
     problem.l()(i) = lo;
     problem.u()(i) = up;
   }

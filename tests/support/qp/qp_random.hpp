@@ -10,11 +10,11 @@
 namespace mrqp::qp {
 
 struct RandomQpSpec {
-  int n = 10;            ///< variables
-  int me = 0;            ///< rows of A (independent with probability 1)
-  int mi = 0;            ///< rows of C
-  bool bounds = true;    ///< finite variable bounds (otherwise ±inf)
-  int hessian_rank = -1; ///< rank of H; -1 = full rank (strictly convex)
+  int n = 10;                    ///< variables
+  int me = 0;                    ///< rows of A (independent with probability 1)
+  int mi = 0;                    ///< rows of C
+  bool bounds = true;            ///< finite variable bounds (otherwise ±inf)
+  int hessian_rank = -1;         ///< rank of H; -1 = full rank (strictly convex)
   double hessian_shift = 1e-1;   ///< δ in H = MᵀM/n + δI (full rank only)
   double gradient_scale = 10.0;  ///< ‖g‖ relative to ‖H‖: large values make many constraints active
   double one_sided = 0.25;       ///< probability that a row has only a lower (or only an upper) side

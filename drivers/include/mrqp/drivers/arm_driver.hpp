@@ -65,33 +65,33 @@
 namespace mrqp::drivers {
 
 struct ArmDriveConfig {
-  std::size_t bus = 0;      ///< index into the routers given to ArmDriver::create
-  std::uint8_t node = 1;    ///< CANopen node id 1..127
+  std::size_t bus = 0;    ///< index into the routers given to ArmDriver::create
+  std::uint8_t node = 1;  ///< CANopen node id 1..127
   mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
-  std::int8_t mode = MRQP_FW_MODE_CSP;  ///< MRQP_FW_MODE_CSP or MRQP_FW_MODE_CST
-  double position_min = -std::numeric_limits<double>::infinity();  ///< rad
-  double position_max = std::numeric_limits<double>::infinity();   ///< rad
-  double torque_limit = std::numeric_limits<double>::infinity();   ///< N m, absolute
-  double velocity_limit = std::numeric_limits<double>::infinity(); ///< rad/s, feedback check only
+  std::int8_t mode = MRQP_FW_MODE_CSP;                              ///< MRQP_FW_MODE_CSP or MRQP_FW_MODE_CST
+  double position_min = -std::numeric_limits<double>::infinity();   ///< rad
+  double position_max = std::numeric_limits<double>::infinity();    ///< rad
+  double torque_limit = std::numeric_limits<double>::infinity();    ///< N m, absolute
+  double velocity_limit = std::numeric_limits<double>::infinity();  ///< rad/s, feedback check only
 };
 
 struct ArmConfig {
   std::vector<ArmDriveConfig> drives;
-  TimeNs cycle_period = milliseconds(1);     ///< control cycle (written to 0x1006)
-  bool tpdo2 = true;                         ///< map and enable TPDO2 (velocity, error code, mode)
-  bool produce_sync = true;                  ///< send one SYNC per bus and cycle
-  std::uint8_t sync_counter_overflow = 0;    ///< 0: SYNC without counter; 2..240: counter
+  TimeNs cycle_period = milliseconds(1);   ///< control cycle (written to 0x1006)
+  bool tpdo2 = true;                       ///< map and enable TPDO2 (velocity, error code, mode)
+  bool produce_sync = true;                ///< send one SYNC per bus and cycle
+  std::uint8_t sync_counter_overflow = 0;  ///< 0: SYNC without counter; 2..240: counter
   NmtReset reset = NmtReset::Node;
-  std::uint16_t producer_heartbeat_ms = 100; ///< written to 0x1017; 0: no heartbeat monitoring
+  std::uint16_t producer_heartbeat_ms = 100;     ///< written to 0x1017; 0: no heartbeat monitoring
   TimeNs heartbeat_timeout = milliseconds(250);  ///< consumer time of the master
-  std::uint8_t master_node = 0;              ///< != 0: send a master heartbeat as this node id
+  std::uint8_t master_node = 0;                  ///< != 0: send a master heartbeat as this node id
   std::uint16_t master_heartbeat_ms = 100;
-  std::uint16_t drive_consumer_ms = 300;     ///< written to 0x1016:1 when master_node != 0
-  bool write_cycle_period = true;            ///< write 0x1006 = cycle period in microseconds
-  std::uint32_t feedback_missing_cycles = 3; ///< consecutive cycles without TPDO1 -> fault
-  TimeNs boot_timeout = seconds(5);          ///< reset -> all boot-up messages
-  TimeNs sdo_timeout = milliseconds(100);    ///< per SDO request
-  TimeNs enable_timeout = seconds(1);        ///< request -> target state reached
+  std::uint16_t drive_consumer_ms = 300;      ///< written to 0x1016:1 when master_node != 0
+  bool write_cycle_period = true;             ///< write 0x1006 = cycle period in microseconds
+  std::uint32_t feedback_missing_cycles = 3;  ///< consecutive cycles without TPDO1 -> fault
+  TimeNs boot_timeout = seconds(5);           ///< reset -> all boot-up messages
+  TimeNs sdo_timeout = milliseconds(100);     ///< per SDO request
+  TimeNs enable_timeout = seconds(1);         ///< request -> target state reached
 };
 
 enum class ArmPhase : std::uint8_t { Idle = 0, Resetting, Configuring, Starting, Running, Failed };
@@ -108,12 +108,12 @@ struct ArmDriveState {
   std::uint16_t statusword = 0;
   mrqp_fw_cia402_state state = MRQP_FW_CIA402_UNKNOWN;
   std::int8_t mode_display = 0;
-  std::uint16_t error_code = 0;      ///< 0x603F from TPDO2
-  std::uint8_t nmt_state = 0xFF;     ///< last heartbeat state (0xFF: none yet)
-  std::uint16_t controlword = 0;     ///< last controlword sent
-  bool valid = false;                ///< a TPDO1 has been received
-  bool fresh = false;                ///< a TPDO1 arrived since the previous update()
-  TimeNs timestamp = 0;              ///< reception time of the last TPDO1
+  std::uint16_t error_code = 0;   ///< 0x603F from TPDO2
+  std::uint8_t nmt_state = 0xFF;  ///< last heartbeat state (0xFF: none yet)
+  std::uint16_t controlword = 0;  ///< last controlword sent
+  bool valid = false;             ///< a TPDO1 has been received
+  bool fresh = false;             ///< a TPDO1 arrived since the previous update()
+  TimeNs timestamp = 0;           ///< reception time of the last TPDO1
 };
 
 class ArmDriver final : public JointDevice, public FrameHandler {
@@ -171,11 +171,11 @@ class ArmDriver final : public JointDevice, public FrameHandler {
     ArmDriveConfig cfg;
     ArmDriveState state;
     DeviceFaults faults;
-    std::uint32_t events = 0;            ///< flags raised since the previous update
-    NmtBoot nmt;                         ///< reset, boot-up wait, NMT start
-    SdoWriteSequence sdo;                ///< the boot configuration
+    std::uint32_t events = 0;  ///< flags raised since the previous update
+    NmtBoot nmt;               ///< reset, boot-up wait, NMT start
+    SdoWriteSequence sdo;      ///< the boot configuration
     HeartbeatConsumer heartbeat;
-    mrqp_fw_frame pending{};             ///< one-shot frame waiting for the queue (NMT, SDO)
+    mrqp_fw_frame pending{};  ///< one-shot frame waiting for the queue (NMT, SDO)
     bool has_pending = false;
     mrqp_fw_cia402_state target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
     TimeNs target_since = 0;
@@ -186,13 +186,13 @@ class ArmDriver final : public JointDevice, public FrameHandler {
     bool sp_torque_valid = false;
     bool got_tpdo1 = false;
     bool tpdo2_seen = false;
-    std::uint32_t sticky = 0;            ///< flags that hold until the next start() (boot failure)
+    std::uint32_t sticky = 0;  ///< flags that hold until the next start() (boot failure)
     mrqp_fw_cia402_state prev_state = MRQP_FW_CIA402_UNKNOWN;
     Claim last_claim = Claim::Accepted;
   };
   struct BusSlot {
     std::array<std::int16_t, 128> node_to_drive{};
-    bool cyclic_sent = false;            ///< cyclic traffic (RPDOs, SYNC) has started
+    bool cyclic_sent = false;  ///< cyclic traffic (RPDOs, SYNC) has started
     SyncProducer sync;
     bool has_drives = false;
   };

@@ -18,36 +18,36 @@ struct RobotTraffic {
   std::uint32_t arm_drives = 7;
   std::uint32_t hand_joints = 20;
   std::uint32_t ft_sensors = 2;
-  bool arm_tpdo2 = true;             ///< velocity / error code / mode feedback every cycle
-  double heartbeat_period_s = 0.1;   ///< drive heartbeat producer time
+  bool arm_tpdo2 = true;            ///< velocity / error code / mode feedback every cycle
+  double heartbeat_period_s = 0.1;  ///< drive heartbeat producer time
 };
 
 struct BusKind {
-  std::string label;                 ///< e.g. "classic 1 Mbit/s"
+  std::string label;  ///< e.g. "classic 1 Mbit/s"
   std::uint32_t nominal_bps = 1000000;
-  std::uint32_t data_bps = 0;        ///< > 0: CAN FD
+  std::uint32_t data_bps = 0;  ///< > 0: CAN FD
 };
 
 struct PlannedBus {
-  bool hand = false;                 ///< a hand bus (else an arm bus)
+  bool hand = false;  ///< a hand bus (else an arm bus)
   std::uint32_t arm_drives = 0;
   std::uint32_t ft_sensors = 0;
   std::uint32_t mit_motors = 0;
-  std::uint32_t hand_joints = 0;     ///< joints of hand boards on this bus
+  std::uint32_t hand_joints = 0;  ///< joints of hand boards on this bus
   std::uint32_t hand_boards = 0;
   double utilisation_worst = 0.0;
-  std::string content;               ///< "7 drives + 1 F/T"
+  std::string content;  ///< "7 drives + 1 F/T"
 };
 
 struct BusPlan {
   bool feasible = true;
-  std::string error;                 ///< why not (a single device exceeds a bus)
+  std::string error;  ///< why not (a single device exceeds a bus)
   std::vector<PlannedBus> buses;
   std::size_t arm_buses = 0;
   std::size_t hand_buses = 0;
-  std::uint32_t max_drives_per_bus = 0;   ///< arm drives alone on one bus (with SYNC)
-  std::uint32_t max_mit_per_bus = 0;      ///< MIT motors on one classic bus (0 on FD)
-  double fullest = 0.0;                   ///< largest worst-case utilisation
+  std::uint32_t max_drives_per_bus = 0;  ///< arm drives alone on one bus (with SYNC)
+  std::uint32_t max_mit_per_bus = 0;     ///< MIT motors on one classic bus (0 on FD)
+  double fullest = 0.0;                  ///< largest worst-case utilisation
 };
 
 BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit);

@@ -24,22 +24,22 @@ const char* bus_state_str(BusState state) noexcept;
 
 /// Flags of a bus error event (SocketCAN error frame, or a SimBus error notification).
 namespace bus_error {
-inline constexpr std::uint32_t kAck = 1u << 0;          ///< transmitted frame not acknowledged
-inline constexpr std::uint32_t kBit = 1u << 1;          ///< bit error (sent level not read back)
-inline constexpr std::uint32_t kStuff = 1u << 2;        ///< stuff error
-inline constexpr std::uint32_t kForm = 1u << 3;         ///< form error
-inline constexpr std::uint32_t kCrc = 1u << 4;          ///< CAN CRC error
-inline constexpr std::uint32_t kProtocol = 1u << 5;     ///< other / unspecified protocol error
-inline constexpr std::uint32_t kTxTimeout = 1u << 6;    ///< the device driver gave up a transmission
-inline constexpr std::uint32_t kRxOverflow = 1u << 7;   ///< controller receive buffer overflow
-inline constexpr std::uint32_t kTxOverflow = 1u << 8;   ///< controller transmit buffer overflow
-inline constexpr std::uint32_t kWarning = 1u << 9;      ///< a counter reached the warning level (96)
-inline constexpr std::uint32_t kPassive = 1u << 10;     ///< entered error passive (a counter >= 128)
-inline constexpr std::uint32_t kBusOff = 1u << 11;      ///< entered bus-off (TEC > 255)
-inline constexpr std::uint32_t kRestarted = 1u << 12;   ///< left bus-off (recovery / restart)
-inline constexpr std::uint32_t kActive = 1u << 13;      ///< back to error active
-inline constexpr std::uint32_t kTransceiver = 1u << 14; ///< transceiver (wiring) problem
-inline constexpr std::uint32_t kTransmitting = 1u << 15;///< the error happened while this node transmitted
+inline constexpr std::uint32_t kAck = 1u << 0;            ///< transmitted frame not acknowledged
+inline constexpr std::uint32_t kBit = 1u << 1;            ///< bit error (sent level not read back)
+inline constexpr std::uint32_t kStuff = 1u << 2;          ///< stuff error
+inline constexpr std::uint32_t kForm = 1u << 3;           ///< form error
+inline constexpr std::uint32_t kCrc = 1u << 4;            ///< CAN CRC error
+inline constexpr std::uint32_t kProtocol = 1u << 5;       ///< other / unspecified protocol error
+inline constexpr std::uint32_t kTxTimeout = 1u << 6;      ///< the device driver gave up a transmission
+inline constexpr std::uint32_t kRxOverflow = 1u << 7;     ///< controller receive buffer overflow
+inline constexpr std::uint32_t kTxOverflow = 1u << 8;     ///< controller transmit buffer overflow
+inline constexpr std::uint32_t kWarning = 1u << 9;        ///< a counter reached the warning level (96)
+inline constexpr std::uint32_t kPassive = 1u << 10;       ///< entered error passive (a counter >= 128)
+inline constexpr std::uint32_t kBusOff = 1u << 11;        ///< entered bus-off (TEC > 255)
+inline constexpr std::uint32_t kRestarted = 1u << 12;     ///< left bus-off (recovery / restart)
+inline constexpr std::uint32_t kActive = 1u << 13;        ///< back to error active
+inline constexpr std::uint32_t kTransceiver = 1u << 14;   ///< transceiver (wiring) problem
+inline constexpr std::uint32_t kTransmitting = 1u << 15;  ///< the error happened while this node transmitted
 }  // namespace bus_error
 
 /// A bus error event; tec/rec are the counters after the event (when known).
@@ -52,11 +52,11 @@ struct BusErrorEvent {
 
 /// One received item: a data frame or an error event.
 struct RxFrame {
-  mrqp_fw_frame frame{};    ///< valid for ReceiveResult::Frame
-  BusErrorEvent error{};    ///< valid for ReceiveResult::ErrorEvent
-  TimeNs timestamp = 0;     ///< reception time on the caller's clock (see has_timestamp)
+  mrqp_fw_frame frame{};  ///< valid for ReceiveResult::Frame
+  BusErrorEvent error{};  ///< valid for ReceiveResult::ErrorEvent
+  TimeNs timestamp = 0;   ///< reception time on the caller's clock (see has_timestamp)
   bool has_timestamp = false;
-  bool own = false;         ///< a frame this bus itself sent, returned once it was on the wire (TX echo)
+  bool own = false;  ///< a frame this bus itself sent, returned once it was on the wire (TX echo)
 };
 
 enum class SendResult : std::uint8_t {

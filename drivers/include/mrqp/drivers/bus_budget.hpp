@@ -35,32 +35,32 @@ std::string bus_spec_label(const BusSpec& spec);
 
 struct BudgetLine {
   std::string label;
-  std::uint32_t count = 0;   ///< frames per cycle (cyclic) or per period (periodic)
-  std::uint8_t len = 0;      ///< payload bytes of one frame
+  std::uint32_t count = 0;  ///< frames per cycle (cyclic) or per period (periodic)
+  std::uint8_t len = 0;     ///< payload bytes of one frame
   FrameFormat format = FrameFormat::Classic;
-  double period_s = 0.0;     ///< 0: every cycle; > 0: `count` frames every period_s (averaged)
+  double period_s = 0.0;            ///< 0: every cycle; > 0: `count` frames every period_s (averaged)
   mrqp_fw_frame_bits bits_min{};    ///< one frame, no stuffing
   mrqp_fw_frame_bits bits_worst{};  ///< one frame, worst-case stuffing
-  double ns_min = 0.0;       ///< one frame
+  double ns_min = 0.0;              ///< one frame
   double ns_worst = 0.0;
-  double per_cycle = 0.0;    ///< frames per cycle (count, or count x cycle period / period_s)
+  double per_cycle = 0.0;  ///< frames per cycle (count, or count x cycle period / period_s)
 };
 
 struct BudgetResult {
-  bool valid = true;            ///< false: a configuration error (see error)
+  bool valid = true;  ///< false: a configuration error (see error)
   std::string error;
   double cycle_ns = 0.0;
   double frames_per_cycle = 0.0;
-  double nominal_bits_min = 0.0;   ///< per cycle, at the nominal rate
+  double nominal_bits_min = 0.0;  ///< per cycle, at the nominal rate
   double nominal_bits_worst = 0.0;
-  double data_bits_min = 0.0;      ///< per cycle, at the data rate (FD with BRS)
+  double data_bits_min = 0.0;  ///< per cycle, at the data rate (FD with BRS)
   double data_bits_worst = 0.0;
-  double time_min_ns = 0.0;        ///< per cycle on the wire
+  double time_min_ns = 0.0;  ///< per cycle on the wire
   double time_worst_ns = 0.0;
-  double utilisation_min = 0.0;    ///< time / cycle period
+  double utilisation_min = 0.0;  ///< time / cycle period
   double utilisation_worst = 0.0;
   double limit = 0.8;
-  bool fits = true;                ///< valid and utilisation_worst <= limit
+  bool fits = true;  ///< valid and utilisation_worst <= limit
 };
 
 class BusBudget {
@@ -74,14 +74,14 @@ class BusBudget {
                     double period_s);
 
   // The traffic of this project's devices (docs/protocol.md), per control cycle:
-  void add_sync();                                      ///< SYNC, 0 bytes
-  void add_arm_drives(std::uint32_t n, bool tpdo2);     ///< RPDO1 8 + TPDO1 8 (+ TPDO2 7) each
-  void add_heartbeats(std::uint32_t n, double period_s);///< 1-byte heartbeats every period_s
-  void add_mit_motors(std::uint32_t n);                 ///< command 8 + reply 6 each
-  void add_hand_board(std::uint32_t joints);            ///< FD command + feedback frames (BRS)
-  void add_ft_classic(std::uint32_t n);                 ///< forces 8 + moments 8 each
-  void add_ft_fd(std::uint32_t n);                      ///< one 32-byte FD frame (BRS) each
-  void add_imu_fd(std::uint32_t n);                     ///< one 24-byte FD frame (BRS) each
+  void add_sync();                                        ///< SYNC, 0 bytes
+  void add_arm_drives(std::uint32_t n, bool tpdo2);       ///< RPDO1 8 + TPDO1 8 (+ TPDO2 7) each
+  void add_heartbeats(std::uint32_t n, double period_s);  ///< 1-byte heartbeats every period_s
+  void add_mit_motors(std::uint32_t n);                   ///< command 8 + reply 6 each
+  void add_hand_board(std::uint32_t joints);              ///< FD command + feedback frames (BRS)
+  void add_ft_classic(std::uint32_t n);                   ///< forces 8 + moments 8 each
+  void add_ft_fd(std::uint32_t n);                        ///< one 32-byte FD frame (BRS) each
+  void add_imu_fd(std::uint32_t n);                       ///< one 24-byte FD frame (BRS) each
 
   const BusSpec& spec() const noexcept { return spec_; }
   const std::vector<BudgetLine>& lines() const noexcept { return lines_; }

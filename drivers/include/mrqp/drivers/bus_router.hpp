@@ -32,8 +32,7 @@ class FrameHandler {
   virtual Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept = 0;
   /// Called from BusRouter::poll for each of the bus's own frames it returns (TX echo, see
   /// Bus::echoes_own()), for every handler; never passed to on_frame, never counted as unknown.
-  virtual void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept
-  {
+  virtual void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
     (void)from;
     (void)rx;
     (void)now;
@@ -44,15 +43,15 @@ class FrameHandler {
 };
 
 struct RouterStats {
-  std::uint64_t frames = 0;        ///< data frames received
+  std::uint64_t frames = 0;  ///< data frames received
   std::uint64_t accepted = 0;
-  std::uint64_t rejected = 0;      ///< claimed but malformed (corrupted), dropped
-  std::uint64_t unknown = 0;       ///< claimed by nobody, dropped
-  std::uint64_t echoes = 0;        ///< own frames returned by the bus (TX echo), given to on_own_frame
+  std::uint64_t rejected = 0;  ///< claimed but malformed (corrupted), dropped
+  std::uint64_t unknown = 0;   ///< claimed by nobody, dropped
+  std::uint64_t echoes = 0;    ///< own frames returned by the bus (TX echo), given to on_own_frame
   std::uint64_t error_events = 0;
   std::uint64_t receive_failures = 0;
-  std::uint64_t polls_truncated = 0;  ///< polls that stopped at max_frames_per_poll
-  std::uint32_t last_error_flags = 0; ///< OR of the error-event flags of the last poll
+  std::uint64_t polls_truncated = 0;   ///< polls that stopped at max_frames_per_poll
+  std::uint32_t last_error_flags = 0;  ///< OR of the error-event flags of the last poll
 };
 
 class BusRouter {

@@ -30,11 +30,11 @@ enum class JointMode : std::uint8_t {
 
 /// One joint's setpoint for the next transmit().
 struct JointCommand {
-  double position = 0.0;   ///< rad
-  double velocity = 0.0;   ///< rad/s
-  double torque = 0.0;     ///< N m (the command in Torque mode, feed-forward otherwise)
-  double stiffness = -1.0; ///< N m/rad, Impedance mode; < 0: the device's configured default
-  double damping = -1.0;   ///< N m s/rad, Impedance mode; < 0: the device's configured default
+  double position = 0.0;    ///< rad
+  double velocity = 0.0;    ///< rad/s
+  double torque = 0.0;      ///< N m (the command in Torque mode, feed-forward otherwise)
+  double stiffness = -1.0;  ///< N m/rad, Impedance mode; < 0: the device's configured default
+  double damping = -1.0;    ///< N m s/rad, Impedance mode; < 0: the device's configured default
 };
 
 /// What the driver last received for one joint.

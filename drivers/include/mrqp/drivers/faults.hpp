@@ -16,26 +16,27 @@ namespace mrqp::drivers {
 
 /// Fault flags (bit mask), per device and per bus, OR-ed into FaultReport::flags.
 namespace fault {
-inline constexpr std::uint32_t kHeartbeatLost = 1u << 0;    ///< no heartbeat within the consumer time
-inline constexpr std::uint32_t kFeedbackMissing = 1u << 1;  ///< no feedback for N consecutive cycles
-inline constexpr std::uint32_t kEmcy = 1u << 2;             ///< an EMCY with a non-zero code is active
-inline constexpr std::uint32_t kDeviceFault = 1u << 3;      ///< the device reports a fault state
-inline constexpr std::uint32_t kOutOfRange = 1u << 4;       ///< a feedback value outside its range
-inline constexpr std::uint32_t kSetpointRefused = 1u << 5;  ///< a NaN / infinite setpoint was refused
-inline constexpr std::uint32_t kSetpointLimited = 1u << 6;  ///< a setpoint was clamped to its limit
-inline constexpr std::uint32_t kCorruptFrame = 1u << 7;     ///< a frame failed to decode (dropped)
-inline constexpr std::uint32_t kUnknownFrame = 1u << 8;     ///< a frame nobody owns (dropped)
-inline constexpr std::uint32_t kBusErrorFrames = 1u << 9;   ///< error frames on the bus
-inline constexpr std::uint32_t kBusErrorPassive = 1u << 10; ///< controller error passive
-inline constexpr std::uint32_t kBusOff = 1u << 11;          ///< controller bus-off
-inline constexpr std::uint32_t kTxQueueFull = 1u << 12;     ///< a frame was not queued (retried next cycle)
-inline constexpr std::uint32_t kRxOverflow = 1u << 13;      ///< received frames were lost
-inline constexpr std::uint32_t kStateMismatch = 1u << 14;   ///< NMT state / mode not as commanded, device reset
-inline constexpr std::uint32_t kTimeout = 1u << 15;         ///< boot, SDO, enable or disable took too long
-inline constexpr std::uint32_t kBootFailed = 1u << 16;      ///< the configuration of a device failed
-inline constexpr std::uint32_t kTornPair = 1u << 17;        ///< two halves of one sample did not match
-inline constexpr std::uint32_t kSampleLost = 1u << 18;      ///< a gap in a sequence counter
-inline constexpr std::uint32_t kDeviceWarning = 1u << 19;   ///< a device warning (temperature, limit...)
+inline constexpr std::uint32_t kHeartbeatLost = 1u << 0;     ///< no heartbeat within the consumer time
+inline constexpr std::uint32_t kFeedbackMissing = 1u << 1;   ///< no feedback for N consecutive cycles
+inline constexpr std::uint32_t kEmcy = 1u << 2;              ///< an EMCY with a non-zero code is active
+inline constexpr std::uint32_t kDeviceFault = 1u << 3;       ///< the device reports a fault state
+inline constexpr std::uint32_t kOutOfRange = 1u << 4;        ///< a feedback value outside its range
+inline constexpr std::uint32_t kSetpointRefused = 1u << 5;   ///< a NaN / infinite setpoint was refused
+inline constexpr std::uint32_t kSetpointLimited = 1u << 6;   ///< a setpoint was clamped to its limit
+inline constexpr std::uint32_t kCorruptFrame = 1u << 7;      ///< a frame failed to decode (dropped)
+inline constexpr std::uint32_t kUnknownFrame = 1u << 8;      ///< a frame nobody owns (dropped)
+inline constexpr std::uint32_t kBusErrorFrames = 1u << 9;    ///< error frames on the bus
+inline constexpr std::uint32_t kBusErrorPassive = 1u << 10;  ///< controller error passive
+inline constexpr std::uint32_t kBusOff = 1u << 11;           ///< controller bus-off
+inline constexpr std::uint32_t kTxQueueFull = 1u << 12;      ///< a frame was not queued (retried next cycle)
+inline constexpr std::uint32_t kRxOverflow = 1u << 13;       ///< received frames were lost
+inline constexpr std::uint32_t kStateMismatch = 1u
+                                                << 14;  ///< NMT state / mode not as commanded, device reset
+inline constexpr std::uint32_t kTimeout = 1u << 15;     ///< boot, SDO, enable or disable took too long
+inline constexpr std::uint32_t kBootFailed = 1u << 16;  ///< the configuration of a device failed
+inline constexpr std::uint32_t kTornPair = 1u << 17;    ///< two halves of one sample did not match
+inline constexpr std::uint32_t kSampleLost = 1u << 18;  ///< a gap in a sequence counter
+inline constexpr std::uint32_t kDeviceWarning = 1u << 19;  ///< a device warning (temperature, limit...)
 inline constexpr std::uint32_t kLast = kDeviceWarning;
 }  // namespace fault
 
@@ -63,16 +64,16 @@ struct DeviceFaults {
 
 /// One bus, as seen by a driver.
 struct BusFaults {
-  std::uint32_t flags = 0;              ///< fault:: bus flags of this cycle
+  std::uint32_t flags = 0;  ///< fault:: bus flags of this cycle
   BusState state = BusState::ErrorActive;
   std::uint16_t tec = 0;
   std::uint16_t rec = 0;
-  std::uint32_t error_events = 0;       ///< error frames this cycle
-  std::uint32_t error_flags = 0;        ///< bus_error:: flags of this cycle's error frames
-  std::uint32_t unknown_frames = 0;     ///< frames nobody claimed this cycle
-  std::uint32_t rejected_frames = 0;    ///< frames claimed but malformed this cycle
-  std::uint32_t tx_queue_full = 0;      ///< sends refused (queue full) this cycle
-  std::uint32_t rx_overflow = 0;        ///< frames lost to receive overflow this cycle
+  std::uint32_t error_events = 0;     ///< error frames this cycle
+  std::uint32_t error_flags = 0;      ///< bus_error:: flags of this cycle's error frames
+  std::uint32_t unknown_frames = 0;   ///< frames nobody claimed this cycle
+  std::uint32_t rejected_frames = 0;  ///< frames claimed but malformed this cycle
+  std::uint32_t tx_queue_full = 0;    ///< sends refused (queue full) this cycle
+  std::uint32_t rx_overflow = 0;      ///< frames lost to receive overflow this cycle
   std::uint64_t error_events_total = 0;
   std::uint64_t unknown_total = 0;
   std::uint64_t rejected_total = 0;
@@ -82,8 +83,8 @@ struct BusFaults {
 
 /// What update() returns: views into arrays the driver owns, valid until the next update().
 struct FaultReport {
-  std::uint64_t cycle = 0;               ///< number of update() calls so far
-  std::uint32_t flags = 0;               ///< OR of every device and bus flag of this cycle
+  std::uint64_t cycle = 0;  ///< number of update() calls so far
+  std::uint32_t flags = 0;  ///< OR of every device and bus flag of this cycle
   const DeviceFaults* devices = nullptr;
   std::size_t device_count = 0;
   const BusFaults* buses = nullptr;

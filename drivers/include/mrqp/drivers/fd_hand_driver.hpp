@@ -49,7 +49,7 @@ struct FdHandConfig {
   std::vector<HandBoardConfig> boards;
   std::uint8_t enabled_mode = MRQP_FW_HAND_MODE_POSITION;  ///< POSITION or TORQUE
   std::uint32_t feedback_missing_cycles = 3;
-  std::uint16_t max_seq_lag = 2;   ///< cycles the echoed sequence may lag behind
+  std::uint16_t max_seq_lag = 2;  ///< cycles the echoed sequence may lag behind
   TimeNs enable_timeout = milliseconds(100);
 };
 
@@ -60,21 +60,21 @@ struct HandJointState {
 };
 
 struct HandBoardState {
-  std::uint8_t mode = 0xFF;      ///< mode reported by the board (0xFF: none yet)
-  std::uint8_t status = 0;       ///< MRQP_FW_HAND_STATUS_* of the last feedback
-  std::uint16_t seq = 0;         ///< sequence of the last command sent
-  std::uint16_t seq_echo = 0;    ///< last sequence echoed by the board
-  std::uint8_t counter = 0;      ///< last feedback counter
-  bool valid = false;            ///< complete feedback received at least once
-  bool fresh = false;            ///< every feedback frame of this cycle arrived
-  bool enabled = false;          ///< the board confirmed the requested (non-disabled) mode
-  TimeNs timestamp = 0;          ///< reception time of the last feedback frame
+  std::uint8_t mode = 0xFF;    ///< mode reported by the board (0xFF: none yet)
+  std::uint8_t status = 0;     ///< MRQP_FW_HAND_STATUS_* of the last feedback
+  std::uint16_t seq = 0;       ///< sequence of the last command sent
+  std::uint16_t seq_echo = 0;  ///< last sequence echoed by the board
+  std::uint8_t counter = 0;    ///< last feedback counter
+  bool valid = false;          ///< complete feedback received at least once
+  bool fresh = false;          ///< every feedback frame of this cycle arrived
+  bool enabled = false;        ///< the board confirmed the requested (non-disabled) mode
+  TimeNs timestamp = 0;        ///< reception time of the last feedback frame
 };
 
 class FdHandDriver final : public JointDevice, public FrameHandler {
  public:
-  static std::unique_ptr<FdHandDriver> create(const std::vector<BusRouter*>& buses, const FdHandConfig& config,
-                                              std::string* error);
+  static std::unique_ptr<FdHandDriver> create(const std::vector<BusRouter*>& buses,
+                                              const FdHandConfig& config, std::string* error);
   FdHandDriver(const FdHandDriver&) = delete;
   FdHandDriver& operator=(const FdHandDriver&) = delete;
 
@@ -103,7 +103,9 @@ class FdHandDriver final : public JointDevice, public FrameHandler {
 
   std::size_t board_count() const noexcept { return boards_.size(); }
   const HandBoardState& board(std::size_t i) const noexcept { return boards_[i].state; }
-  const HandJointState& joint(std::size_t board, std::size_t j) const noexcept { return boards_[board].joints[j]; }
+  const HandJointState& joint(std::size_t board, std::size_t j) const noexcept {
+    return boards_[board].joints[j];
+  }
   bool all_enabled() const noexcept;
   const FaultReport& faults() const noexcept override { return routers_.report(); }
   void declare_traffic(std::size_t bus, BusBudget& budget) const override;
@@ -116,11 +118,11 @@ class FdHandDriver final : public JointDevice, public FrameHandler {
     std::uint32_t events = 0;
     std::array<HandJointState, MRQP_FW_HAND_MAX_JOINTS> joints{};
     std::array<HandJointState, MRQP_FW_HAND_MAX_JOINTS> sp{};
-    std::uint32_t sp_valid = 0;      ///< bit per joint
-    std::uint32_t chunks = 0;        ///< frames per cycle and direction
-    std::uint32_t chunks_seen = 0;   ///< bit per feedback frame this cycle
+    std::uint32_t sp_valid = 0;     ///< bit per joint
+    std::uint32_t chunks = 0;       ///< frames per cycle and direction
+    std::uint32_t chunks_seen = 0;  ///< bit per feedback frame this cycle
     bool counter_valid = false;
-    bool sent = false;               ///< commands went out at the previous transmit
+    bool sent = false;  ///< commands went out at the previous transmit
     std::uint8_t mode_requested = MRQP_FW_HAND_MODE_DISABLED;
     TimeNs mode_since = 0;
   };

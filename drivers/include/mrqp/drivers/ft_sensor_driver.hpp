@@ -39,8 +39,8 @@ namespace mrqp::drivers {
 enum class FtVariant : std::uint8_t { Classic = 0, Fd };
 
 struct FtSensorConfig {
-  std::size_t bus = 0;          ///< index into the routers given to create()
-  std::uint8_t node = 1;        ///< 1..127 (its own node id on the arm bus)
+  std::size_t bus = 0;    ///< index into the routers given to create()
+  std::uint8_t node = 1;  ///< 1..127 (its own node id on the arm bus)
   FtVariant variant = FtVariant::Classic;
   mrqp_fw_ft_scale scale = MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;  ///< use the FD default for Fd
   double force_limit = std::numeric_limits<double>::infinity();    ///< N, per axis (feedback check)
@@ -49,7 +49,7 @@ struct FtSensorConfig {
 
 struct FtConfig {
   std::vector<FtSensorConfig> sensors;
-  bool produce_sync = false;                 ///< send one SYNC per bus and cycle (no arm driver there)
+  bool produce_sync = false;  ///< send one SYNC per bus and cycle (no arm driver there)
   std::uint32_t feedback_missing_cycles = 3;
   TimeNs tare_timeout = milliseconds(100);
 };
@@ -57,10 +57,10 @@ struct FtConfig {
 struct FtSensorState {
   std::array<double, 6> wrench{};  ///< fx fy fz (N), mx my mz (N m), sensor frame
   std::uint8_t seq = 0;
-  std::uint8_t status = 0;         ///< MRQP_FW_FT_STATUS_*
-  bool valid = false;              ///< a sample has been received
-  bool fresh = false;              ///< a new sample arrived since the previous update()
-  TimeNs timestamp = 0;            ///< reception time of the frame that completed the sample
+  std::uint8_t status = 0;  ///< MRQP_FW_FT_STATUS_*
+  bool valid = false;       ///< a sample has been received
+  bool fresh = false;       ///< a new sample arrived since the previous update()
+  TimeNs timestamp = 0;     ///< reception time of the frame that completed the sample
 };
 
 class FtSensorDriver final : public WrenchDevice, public FrameHandler {
@@ -107,8 +107,8 @@ class FtSensorDriver final : public WrenchDevice, public FrameHandler {
     Half moments;
     bool got_sample = false;
     bool seq_valid = false;
-    bool tare_send = false;     ///< a tare frame is waiting for the queue
-    bool tare_wait = false;     ///< waiting for the status to confirm
+    bool tare_send = false;  ///< a tare frame is waiting for the queue
+    bool tare_wait = false;  ///< waiting for the status to confirm
     bool tare_value = false;
     TimeNs tare_since = 0;
   };

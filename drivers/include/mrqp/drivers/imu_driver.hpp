@@ -35,8 +35,8 @@
 namespace mrqp::drivers {
 
 struct ImuSensorConfig {
-  std::size_t bus = 0;       ///< index into the routers given to create(); the bus must be CAN FD
-  std::uint8_t node = 1;     ///< 1..127
+  std::size_t bus = 0;    ///< index into the routers given to create(); the bus must be CAN FD
+  std::uint8_t node = 1;  ///< 1..127
   mrqp_fw_imu_scale scale = MRQP_FW_IMU_SCALE_DEFAULT_INIT;
   double rate_limit = std::numeric_limits<double>::infinity();   ///< rad/s, per axis (feedback check)
   double force_limit = std::numeric_limits<double>::infinity();  ///< m/s^2, per axis
@@ -44,7 +44,7 @@ struct ImuSensorConfig {
 
 struct ImuConfig {
   std::vector<ImuSensorConfig> imus;
-  bool produce_sync = false;                 ///< send one SYNC per bus and cycle
+  bool produce_sync = false;  ///< send one SYNC per bus and cycle
   std::uint32_t feedback_missing_cycles = 3;
 };
 
@@ -53,10 +53,10 @@ struct ImuState {
   std::array<double, 3> angular_velocity{};                 ///< rad/s
   std::array<double, 3> specific_force{};                   ///< m/s^2
   std::uint8_t seq = 0;
-  std::uint8_t status = 0;   ///< MRQP_FW_IMU_STATUS_*
-  bool valid = false;        ///< a sample has been received
-  bool aligned = false;      ///< a sample without ALIGNING has been received
-  bool fresh = false;        ///< a new (not STALE) sample arrived since the previous update()
+  std::uint8_t status = 0;  ///< MRQP_FW_IMU_STATUS_*
+  bool valid = false;       ///< a sample has been received
+  bool aligned = false;     ///< a sample without ALIGNING has been received
+  bool fresh = false;       ///< a new (not STALE) sample arrived since the previous update()
   TimeNs timestamp = 0;
 };
 

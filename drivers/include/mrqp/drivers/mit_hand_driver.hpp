@@ -37,20 +37,20 @@
 namespace mrqp::drivers {
 
 struct MitMotorConfig {
-  std::size_t bus = 0;         ///< index into the routers given to create()
-  std::uint8_t motor_id = 1;   ///< 1..127
+  std::size_t bus = 0;        ///< index into the routers given to create()
+  std::uint8_t motor_id = 1;  ///< 1..127
   mrqp_fw_mit_ranges ranges = MRQP_FW_MIT_RANGES_DEFAULT_INIT;
   float position_min = -std::numeric_limits<float>::infinity();  ///< rad: setpoints clamped, feedback flagged
   float position_max = std::numeric_limits<float>::infinity();
-  float default_kp = 0.0f;    ///< N m/rad: JointCommand::stiffness < 0
-  float default_kd = 0.0f;    ///< N m s/rad: JointCommand::damping < 0
-  float quick_stop_kd = 0.0f; ///< N m s/rad: the damping of request_quick_stop()
+  float default_kp = 0.0f;     ///< N m/rad: JointCommand::stiffness < 0
+  float default_kd = 0.0f;     ///< N m s/rad: JointCommand::damping < 0
+  float quick_stop_kd = 0.0f;  ///< N m s/rad: the damping of request_quick_stop()
 };
 
 struct MitHandConfig {
   std::vector<MitMotorConfig> motors;
   std::uint32_t feedback_missing_cycles = 3;
-  bool poll_when_disabled = true;          ///< zero-gain commands while disabled
+  bool poll_when_disabled = true;  ///< zero-gain commands while disabled
   TimeNs enable_timeout = milliseconds(100);
 };
 
@@ -62,15 +62,15 @@ struct MitMotorState {
   float velocity = 0.0f;  ///< rad/s
   float torque = 0.0f;    ///< N m
   MitMode mode = MitMode::Off;
-  bool valid = false;     ///< a reply has been received
-  bool fresh = false;     ///< a reply arrived since the previous update()
+  bool valid = false;  ///< a reply has been received
+  bool fresh = false;  ///< a reply arrived since the previous update()
   TimeNs timestamp = 0;
 };
 
 class MitHandDriver final : public JointDevice, public FrameHandler {
  public:
-  static std::unique_ptr<MitHandDriver> create(const std::vector<BusRouter*>& buses, const MitHandConfig& config,
-                                               std::string* error);
+  static std::unique_ptr<MitHandDriver> create(const std::vector<BusRouter*>& buses,
+                                               const MitHandConfig& config, std::string* error);
   MitHandDriver(const MitHandDriver&) = delete;
   MitHandDriver& operator=(const MitHandDriver&) = delete;
 
@@ -112,9 +112,9 @@ class MitHandDriver final : public JointDevice, public FrameHandler {
     std::uint32_t events = 0;
     mrqp_fw_mit_cmd sp{};
     bool sp_valid = false;
-    bool sent = false;         ///< a frame went out at the previous transmit
-    bool replied = false;      ///< a reply since the previous update
-    bool special_sent = false; ///< ENABLE / DISABLE went out; the next reply confirms it
+    bool sent = false;          ///< a frame went out at the previous transmit
+    bool replied = false;       ///< a reply since the previous update
+    bool special_sent = false;  ///< ENABLE / DISABLE went out; the next reply confirms it
     TimeNs mode_since = 0;
   };
   struct BusSlot {

@@ -56,15 +56,15 @@ struct SimBusConfig {
 };
 
 struct SimNodeConfig {
-  const char* name = "node";      ///< static string, for messages
-  bool fd = false;                ///< CAN FD capable controller (on a FD bus)
-  std::size_t tx_queue = 64;      ///< frames
-  std::size_t rx_queue = 256;     ///< frames and error events
-  bool acknowledge = true;        ///< false: listen-only, never acknowledges
-  bool error_events = true;       ///< deliver error events to receive() (SocketCAN's error filter)
-  bool auto_recover = true;       ///< leave bus-off after 128 x 11 recessive bits
-  bool one_shot = false;          ///< drop a frame after a failed attempt instead of retrying
-  bool echo_own = false;          ///< receive own frames once delivered (RxFrame::own), like CAN_RAW_RECV_OWN_MSGS
+  const char* name = "node";   ///< static string, for messages
+  bool fd = false;             ///< CAN FD capable controller (on a FD bus)
+  std::size_t tx_queue = 64;   ///< frames
+  std::size_t rx_queue = 256;  ///< frames and error events
+  bool acknowledge = true;     ///< false: listen-only, never acknowledges
+  bool error_events = true;    ///< deliver error events to receive() (SocketCAN's error filter)
+  bool auto_recover = true;    ///< leave bus-off after 128 x 11 recessive bits
+  bool one_shot = false;       ///< drop a frame after a failed attempt instead of retrying
+  bool echo_own = false;  ///< receive own frames once delivered (RxFrame::own), like CAN_RAW_RECV_OWN_MSGS
 };
 
 /// What happened to one transmission attempt on the wire.
@@ -74,8 +74,8 @@ const char* wire_outcome_str(WireOutcome outcome) noexcept;
 
 struct WireEvent {
   TimeNs start = 0;
-  TimeNs end = 0;           ///< end of the attempt (intermission included)
-  std::size_t node = 0;     ///< transmitting node index (the lowest on a collision)
+  TimeNs end = 0;        ///< end of the attempt (intermission included)
+  std::size_t node = 0;  ///< transmitting node index (the lowest on a collision)
   mrqp_fw_frame frame{};
   WireOutcome outcome = WireOutcome::Delivered;
   mrqp_fw_frame_bits bits{};  ///< bits of this attempt at the nominal and data rates
@@ -248,8 +248,8 @@ class SimBus {
   SimBusConfig config_;
   std::vector<std::unique_ptr<SimNode>> nodes_;
   TimeNs now_ = 0;
-  TimeNs bus_free_ = 0;   ///< end of the last attempt
-  TimeNs idle_mark_ = 0;  ///< idle time accounted for bus-off recovery up to here
+  TimeNs bus_free_ = 0;           ///< end of the last attempt
+  TimeNs idle_mark_ = 0;          ///< idle time accounted for bus-off recovery up to here
   TimeNs occurrence_ns_ = 11000;  ///< 11 nominal bit times
   bool busy_ = false;
   WireEvent current_{};

@@ -31,12 +31,12 @@ struct CanIdFilter {
 
 struct SocketCanConfig {
   std::string interface = "can0";
-  bool fd = false;                  ///< enable CAN FD frames (the interface MTU must be CANFD_MTU)
-  std::vector<CanIdFilter> filters; ///< empty: receive every frame
-  bool error_frames = true;         ///< receive error frames (all error classes)
-  bool timestamps = true;           ///< kernel receive timestamps (SO_TIMESTAMPNS)
-  bool receive_own = false;         ///< CAN_RAW_RECV_OWN_MSGS (frames this socket sent)
-  int send_buffer_bytes = 0;        ///< SO_SNDBUF; 0 keeps the default
+  bool fd = false;                   ///< enable CAN FD frames (the interface MTU must be CANFD_MTU)
+  std::vector<CanIdFilter> filters;  ///< empty: receive every frame
+  bool error_frames = true;          ///< receive error frames (all error classes)
+  bool timestamps = true;            ///< kernel receive timestamps (SO_TIMESTAMPNS)
+  bool receive_own = false;          ///< CAN_RAW_RECV_OWN_MSGS (frames this socket sent)
+  int send_buffer_bytes = 0;         ///< SO_SNDBUF; 0 keeps the default
 };
 
 class SocketCanBus final : public Bus {

@@ -17,8 +17,7 @@ constexpr TimeNs milliseconds(std::int64_t ms) noexcept { return ms * 1000000; }
 constexpr TimeNs seconds(std::int64_t s) noexcept { return s * 1000000000; }
 
 /// Period in nanoseconds of a cycle rate in Hz (rounded to the nearest nanosecond).
-constexpr TimeNs period_of_hz(double hz) noexcept
-{
+constexpr TimeNs period_of_hz(double hz) noexcept {
   return hz > 0.0 ? static_cast<TimeNs>(1e9 / hz + 0.5) : 0;
 }
 

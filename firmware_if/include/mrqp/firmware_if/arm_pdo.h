@@ -32,11 +32,7 @@ extern "C" {
 /** Transmission type "synchronous, every SYNC" (PDO communication parameter sub-index 2). */
 #define MRQP_FW_PDO_TRANSMISSION_SYNC 1u
 
-typedef enum mrqp_fw_arm_pdo {
-  MRQP_FW_ARM_RPDO1 = 0,
-  MRQP_FW_ARM_TPDO1,
-  MRQP_FW_ARM_TPDO2
-} mrqp_fw_arm_pdo;
+typedef enum mrqp_fw_arm_pdo { MRQP_FW_ARM_RPDO1 = 0, MRQP_FW_ARM_TPDO1, MRQP_FW_ARM_TPDO2 } mrqp_fw_arm_pdo;
 
 /**
  * Mapping of a PDO (to write to 0x1600 / 0x1A00 / 0x1A01 by SDO at start-up): fills entries[0..n)
@@ -68,19 +64,20 @@ typedef struct mrqp_fw_arm_tpdo2 {
 
 /* Raw (wire-unit) pack/unpack. Pack: ERR_ARG for NULL or node outside 1..127. Unpack: classic,
  * COB-ID of `node` (ERR_ID), exact DLC (ERR_LENGTH). */
-mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1(unsigned node, const mrqp_fw_arm_rpdo1 *pdo, mrqp_fw_frame *out);
-mrqp_fw_err mrqp_fw_arm_unpack_rpdo1(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_rpdo1 *pdo);
-mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo1(unsigned node, const mrqp_fw_arm_tpdo1 *pdo, mrqp_fw_frame *out);
-mrqp_fw_err mrqp_fw_arm_unpack_tpdo1(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_tpdo1 *pdo);
-mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo2(unsigned node, const mrqp_fw_arm_tpdo2 *pdo, mrqp_fw_frame *out);
-mrqp_fw_err mrqp_fw_arm_unpack_tpdo2(const mrqp_fw_frame *in, unsigned node, mrqp_fw_arm_tpdo2 *pdo);
+mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1(unsigned node, const mrqp_fw_arm_rpdo1* pdo, mrqp_fw_frame* out);
+mrqp_fw_err mrqp_fw_arm_unpack_rpdo1(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_rpdo1* pdo);
+mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo1(unsigned node, const mrqp_fw_arm_tpdo1* pdo, mrqp_fw_frame* out);
+mrqp_fw_err mrqp_fw_arm_unpack_tpdo1(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_tpdo1* pdo);
+mrqp_fw_pack_flags mrqp_fw_arm_pack_tpdo2(unsigned node, const mrqp_fw_arm_tpdo2* pdo, mrqp_fw_frame* out);
+mrqp_fw_err mrqp_fw_arm_unpack_tpdo2(const mrqp_fw_frame* in, unsigned node, mrqp_fw_arm_tpdo2* pdo);
 
 /**
  * Master: RPDO1 from SI setpoints. Saturation: MRQP_FW_ARM_SAT_POSITION / _TORQUE.
  * NaN position or torque: ERR_NAN (no frame). Invalid scale: ERR_CONFIG.
  */
-mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1_si(const mrqp_fw_arm_scale *scale, unsigned node, uint16_t controlword,
-                                             double position_rad, double torque_nm, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_arm_pack_rpdo1_si(const mrqp_fw_arm_scale* scale, unsigned node,
+                                             uint16_t controlword, double position_rad, double torque_nm,
+                                             mrqp_fw_frame* out);
 
 #ifdef __cplusplus
 }

@@ -27,17 +27,18 @@ typedef struct mrqp_fw_arm_scale {
 } mrqp_fw_arm_scale;
 
 /** 2^19 increments per revolution (a 19-bit absolute encoder), 1 N m rated. */
-#define MRQP_FW_ARM_SCALE_DEFAULT_INIT {524288u, 1000u}
+#define MRQP_FW_ARM_SCALE_DEFAULT_INIT \
+  { 524288u, 1000u }
 
 /** Non-zero if both factors are positive. */
-int mrqp_fw_arm_scale_valid(const mrqp_fw_arm_scale *scale);
+int mrqp_fw_arm_scale_valid(const mrqp_fw_arm_scale* scale);
 
-mrqp_fw_conv mrqp_fw_arm_position_to_inc(const mrqp_fw_arm_scale *scale, double rad, int32_t *inc);
-mrqp_fw_conv mrqp_fw_arm_position_from_inc(const mrqp_fw_arm_scale *scale, int32_t inc, double *rad);
-mrqp_fw_conv mrqp_fw_arm_velocity_to_inc(const mrqp_fw_arm_scale *scale, double rad_s, int32_t *inc_s);
-mrqp_fw_conv mrqp_fw_arm_velocity_from_inc(const mrqp_fw_arm_scale *scale, int32_t inc_s, double *rad_s);
-mrqp_fw_conv mrqp_fw_arm_torque_to_permille(const mrqp_fw_arm_scale *scale, double nm, int16_t *permille);
-mrqp_fw_conv mrqp_fw_arm_torque_from_permille(const mrqp_fw_arm_scale *scale, int16_t permille, double *nm);
+mrqp_fw_conv mrqp_fw_arm_position_to_inc(const mrqp_fw_arm_scale* scale, double rad, int32_t* inc);
+mrqp_fw_conv mrqp_fw_arm_position_from_inc(const mrqp_fw_arm_scale* scale, int32_t inc, double* rad);
+mrqp_fw_conv mrqp_fw_arm_velocity_to_inc(const mrqp_fw_arm_scale* scale, double rad_s, int32_t* inc_s);
+mrqp_fw_conv mrqp_fw_arm_velocity_from_inc(const mrqp_fw_arm_scale* scale, int32_t inc_s, double* rad_s);
+mrqp_fw_conv mrqp_fw_arm_torque_to_permille(const mrqp_fw_arm_scale* scale, double nm, int16_t* permille);
+mrqp_fw_conv mrqp_fw_arm_torque_from_permille(const mrqp_fw_arm_scale* scale, int16_t permille, double* nm);
 
 #ifdef __cplusplus
 }

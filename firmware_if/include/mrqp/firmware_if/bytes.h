@@ -13,55 +13,46 @@
 extern "C" {
 #endif
 
-static inline void mrqp_fw_put_u16le(uint8_t *p, uint16_t v)
-{
+static inline void mrqp_fw_put_u16le(uint8_t* p, uint16_t v) {
   p[0] = (uint8_t)(v & 0xFFu);
   p[1] = (uint8_t)((v >> 8) & 0xFFu);
 }
 
-static inline void mrqp_fw_put_u32le(uint8_t *p, uint32_t v)
-{
+static inline void mrqp_fw_put_u32le(uint8_t* p, uint32_t v) {
   p[0] = (uint8_t)(v & 0xFFu);
   p[1] = (uint8_t)((v >> 8) & 0xFFu);
   p[2] = (uint8_t)((v >> 16) & 0xFFu);
   p[3] = (uint8_t)((v >> 24) & 0xFFu);
 }
 
-static inline void mrqp_fw_put_u16be(uint8_t *p, uint16_t v)
-{
+static inline void mrqp_fw_put_u16be(uint8_t* p, uint16_t v) {
   p[0] = (uint8_t)((v >> 8) & 0xFFu);
   p[1] = (uint8_t)(v & 0xFFu);
 }
 
-static inline uint16_t mrqp_fw_get_u16le(const uint8_t *p)
-{
+static inline uint16_t mrqp_fw_get_u16le(const uint8_t* p) {
   return (uint16_t)((unsigned)p[0] | ((unsigned)p[1] << 8));
 }
 
-static inline uint32_t mrqp_fw_get_u32le(const uint8_t *p)
-{
+static inline uint32_t mrqp_fw_get_u32le(const uint8_t* p) {
   return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
 }
 
-static inline uint16_t mrqp_fw_get_u16be(const uint8_t *p)
-{
+static inline uint16_t mrqp_fw_get_u16be(const uint8_t* p) {
   return (uint16_t)(((unsigned)p[0] << 8) | (unsigned)p[1]);
 }
 
 /** Two's complement reinterpretation without implementation-defined conversions. */
-static inline int16_t mrqp_fw_u16_to_i16(uint16_t v)
-{
+static inline int16_t mrqp_fw_u16_to_i16(uint16_t v) {
   return (v & 0x8000u) ? (int16_t)(-(int32_t)(uint16_t)(~v) - 1) : (int16_t)v;
 }
 
-static inline int32_t mrqp_fw_u32_to_i32(uint32_t v)
-{
+static inline int32_t mrqp_fw_u32_to_i32(uint32_t v) {
   return (v & 0x80000000u) ? (int32_t)(-(int32_t)(~v & 0x7FFFFFFFu) - 1) : (int32_t)v;
 }
 
 /** Sign-extends the low `bits` bits of v (1 <= bits <= 32). */
-static inline int32_t mrqp_fw_sign_extend(uint32_t v, unsigned bits)
-{
+static inline int32_t mrqp_fw_sign_extend(uint32_t v, unsigned bits) {
   uint32_t sign = (uint32_t)1u << (bits - 1u);
   uint32_t mask = (bits >= 32u) ? 0xFFFFFFFFu : (((uint32_t)1u << bits) - 1u);
   v &= mask;
@@ -72,8 +63,7 @@ static inline int32_t mrqp_fw_sign_extend(uint32_t v, unsigned bits)
  * Writes the low `nbits` bits of `value` into `buf` starting at bit `offset`, MSB first
  * (bit 0 of the stream is the MSB of buf[0]). Other bits of buf are unchanged.
  */
-static inline void mrqp_fw_put_bits_be(uint8_t *buf, unsigned offset, unsigned nbits, uint32_t value)
-{
+static inline void mrqp_fw_put_bits_be(uint8_t* buf, unsigned offset, unsigned nbits, uint32_t value) {
   unsigned i;
   for (i = 0u; i < nbits; ++i) {
     unsigned pos = offset + i;
@@ -87,8 +77,7 @@ static inline void mrqp_fw_put_bits_be(uint8_t *buf, unsigned offset, unsigned n
 }
 
 /** Reads `nbits` (<= 32) bits starting at bit `offset`, MSB first. */
-static inline uint32_t mrqp_fw_get_bits_be(const uint8_t *buf, unsigned offset, unsigned nbits)
-{
+static inline uint32_t mrqp_fw_get_bits_be(const uint8_t* buf, unsigned offset, unsigned nbits) {
   uint32_t v = 0u;
   unsigned i;
   for (i = 0u; i < nbits; ++i) {

@@ -50,8 +50,7 @@ typedef enum mrqp_fw_cob {
 } mrqp_fw_cob;
 
 /** Non-zero for a node id in 1..127. */
-static inline int mrqp_fw_node_valid(unsigned node)
-{
+static inline int mrqp_fw_node_valid(unsigned node) {
   return node >= MRQP_FW_NODE_ID_MIN && node <= MRQP_FW_NODE_ID_MAX;
 }
 
@@ -66,7 +65,7 @@ uint32_t mrqp_fw_cob_id(mrqp_fw_cob kind, unsigned node);
  * Returns MRQP_FW_COB_KIND_UNKNOWN (node 0) for identifiers outside the predefined set
  * (e.g. 0x080 + 0 is SYNC, 0x180 + 0 is unknown).
  */
-mrqp_fw_cob mrqp_fw_cob_decode(uint32_t id, uint8_t *node);
+mrqp_fw_cob mrqp_fw_cob_decode(uint32_t id, uint8_t* node);
 
 /** PDO COB-IDs, n = 1..4 (0xFFFFFFFF for an invalid n or node). */
 uint32_t mrqp_fw_cob_tpdo(unsigned n, unsigned node);

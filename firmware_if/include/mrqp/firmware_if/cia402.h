@@ -45,7 +45,7 @@ extern "C" {
 #define MRQP_FW_SW_REMOTE 0x0200u
 #define MRQP_FW_SW_TARGET_REACHED 0x0400u
 #define MRQP_FW_SW_INTERNAL_LIMIT 0x0800u
-#define MRQP_FW_SW_CS_FOLLOWS_COMMAND 0x1000u /**< CSP/CST: drive follows the command value */
+#define MRQP_FW_SW_CS_FOLLOWS_COMMAND 0x1000u  /**< CSP/CST: drive follows the command value */
 #define MRQP_FW_SW_CSP_FOLLOWING_ERROR 0x2000u /**< CSP: following error */
 /** Bits that code the state. */
 #define MRQP_FW_SW_STATE_BITS 0x006Fu
@@ -75,8 +75,8 @@ extern "C" {
 #define MRQP_FW_MODE_PROFILE_VELOCITY 3
 #define MRQP_FW_MODE_PROFILE_TORQUE 4
 #define MRQP_FW_MODE_HOMING 6
-#define MRQP_FW_MODE_CSP 8 /**< cyclic synchronous position */
-#define MRQP_FW_MODE_CSV 9 /**< cyclic synchronous velocity */
+#define MRQP_FW_MODE_CSP 8  /**< cyclic synchronous position */
+#define MRQP_FW_MODE_CSV 9  /**< cyclic synchronous velocity */
 #define MRQP_FW_MODE_CST 10 /**< cyclic synchronous torque */
 
 /** The power states. UNKNOWN is a statusword that matches no state (a broken device). */
@@ -118,7 +118,7 @@ mrqp_fw_cia402_state mrqp_fw_cia402_decode_statusword(uint16_t statusword);
  */
 uint16_t mrqp_fw_cia402_statusword(mrqp_fw_cia402_state state, uint16_t other_bits);
 /** Name of a state ("unknown" for UNKNOWN or out-of-range values). */
-const char *mrqp_fw_cia402_state_str(mrqp_fw_cia402_state state);
+const char* mrqp_fw_cia402_state_str(mrqp_fw_cia402_state state);
 
 /** Command coded by bits 3..0 of a controlword (bit 7 is not looked at). */
 mrqp_fw_cia402_cmd mrqp_fw_cia402_decode_command(uint16_t controlword);
@@ -134,10 +134,10 @@ uint16_t mrqp_fw_cia402_controlword(mrqp_fw_cia402_cmd cmd);
  * UNKNOWN stays UNKNOWN.
  */
 mrqp_fw_cia402_state mrqp_fw_cia402_drive_next(mrqp_fw_cia402_state state, uint16_t controlword,
-                                               uint16_t previous_controlword, unsigned *transition);
+                                               uint16_t previous_controlword, unsigned* transition);
 /** Drive side: automatic transitions (1, 13, 14, 12). Events that do not apply leave the state. */
 mrqp_fw_cia402_state mrqp_fw_cia402_drive_event(mrqp_fw_cia402_state state, mrqp_fw_cia402_event event,
-                                                unsigned *transition);
+                                                unsigned* transition);
 
 /**
  * Master side: the next controlword (command bits only; OR in halt and mode bits yourself) that

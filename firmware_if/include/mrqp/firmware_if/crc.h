@@ -21,9 +21,9 @@ extern "C" {
 #define MRQP_FW_CRC16_CHECK 0x29B1u
 
 /** Continues a CRC over n more bytes (start with MRQP_FW_CRC16_INIT). data may be NULL if n is 0. */
-uint16_t mrqp_fw_crc16_update(uint16_t crc, const uint8_t *data, size_t n);
+uint16_t mrqp_fw_crc16_update(uint16_t crc, const uint8_t* data, size_t n);
 /** CRC-16/CCITT-FALSE of n bytes. */
-uint16_t mrqp_fw_crc16(const uint8_t *data, size_t n);
+uint16_t mrqp_fw_crc16(const uint8_t* data, size_t n);
 
 #ifdef __cplusplus
 }

@@ -67,15 +67,15 @@ typedef struct mrqp_fw_emcy {
 } mrqp_fw_emcy;
 
 /** EMCY frame of `node` (1..127). ERR_ARG for invalid node or NULL. */
-mrqp_fw_pack_flags mrqp_fw_emcy_pack(unsigned node, const mrqp_fw_emcy *emcy, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_emcy_pack(unsigned node, const mrqp_fw_emcy* emcy, mrqp_fw_frame* out);
 /**
  * Validates id 0x081..0x0FF (ERR_ID; 0x080 is SYNC), classic, DLC 8; a non-zero error code with
  * an error register lacking the generic bit is accepted (devices differ), the reserved bit 6 of
  * the error register must be 0 (ERR_FORMAT).
  */
-mrqp_fw_err mrqp_fw_emcy_unpack(const mrqp_fw_frame *in, uint8_t *node, mrqp_fw_emcy *emcy);
+mrqp_fw_err mrqp_fw_emcy_unpack(const mrqp_fw_frame* in, uint8_t* node, mrqp_fw_emcy* emcy);
 /** Name of a known error code; otherwise the name of its class (top hex digit), never NULL. */
-const char *mrqp_fw_emcy_code_str(uint16_t code);
+const char* mrqp_fw_emcy_code_str(uint16_t code);
 
 #ifdef __cplusplus
 }

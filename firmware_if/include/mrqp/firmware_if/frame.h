@@ -36,17 +36,17 @@ typedef struct mrqp_fw_frame {
 } mrqp_fw_frame;
 
 /** Clears a frame: id MRQP_FW_ID_INVALID, len 0, flags 0, data zero. NULL is ignored. */
-void mrqp_fw_frame_clear(mrqp_fw_frame *frame);
+void mrqp_fw_frame_clear(mrqp_fw_frame* frame);
 
 /** Sets id, len, flags and zeroes the data. */
-void mrqp_fw_frame_init(mrqp_fw_frame *frame, uint32_t id, uint8_t len, uint8_t flags);
+void mrqp_fw_frame_init(mrqp_fw_frame* frame, uint32_t id, uint8_t len, uint8_t flags);
 
 /**
  * Checks the envelope of a received frame: not NULL (ERR_NULL), neither extended nor remote and
  * FD flag equal to `fd` (ERR_FORMAT), identifier equal to `id` (ERR_ID), length equal to `len`
  * (ERR_LENGTH).
  */
-mrqp_fw_err mrqp_fw_frame_expect(const mrqp_fw_frame *frame, uint32_t id, unsigned len, int fd);
+mrqp_fw_err mrqp_fw_frame_expect(const mrqp_fw_frame* frame, uint32_t id, unsigned len, int fd);
 
 /** Non-zero if n is a length a CAN FD frame can carry (0..8, 12, 16, 20, 24, 32, 48, 64). */
 int mrqp_fw_fd_len_valid(unsigned n);

@@ -60,11 +60,13 @@ typedef struct mrqp_fw_ft_scale {
 } mrqp_fw_ft_scale;
 
 /** Classic i16 frames: 0.02 N (+/-655 N) and 1 mN m (+/-32.8 N m) resolution. */
-#define MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT {50.0, 1000.0}
+#define MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT \
+  { 50.0, 1000.0 }
 /** FD i32 frame: 1 uN (+/-2147 N) and 1 uN m (+/-2147 N m) resolution. */
-#define MRQP_FW_FT_SCALE_FD_DEFAULT_INIT {1.0e6, 1.0e6}
+#define MRQP_FW_FT_SCALE_FD_DEFAULT_INIT \
+  { 1.0e6, 1.0e6 }
 
-int mrqp_fw_ft_scale_valid(const mrqp_fw_ft_scale *scale);
+int mrqp_fw_ft_scale_valid(const mrqp_fw_ft_scale* scale);
 
 /** One sample in SI: wrench[0..2] force (N), wrench[3..5] moment (N m), sensor frame. */
 typedef struct mrqp_fw_ft_sample {
@@ -75,8 +77,8 @@ typedef struct mrqp_fw_ft_sample {
 
 /** One classic frame decoded on its own (forces or moments). */
 typedef struct mrqp_fw_ft_half {
-  int moments;      /**< 0: forces frame, 1: moments frame */
-  double value[3];  /**< N or N m */
+  int moments;     /**< 0: forces frame, 1: moments frame */
+  double value[3]; /**< N or N m */
   uint8_t seq;
   uint8_t status;
 } mrqp_fw_ft_half;
@@ -86,28 +88,30 @@ typedef struct mrqp_fw_ft_half {
  * channel also sets MRQP_FW_FT_STATUS_OVERRANGE in the transmitted status. NaN: ERR_NAN. Reserved
  * status bits, invalid node or NULL: ERR_ARG. Invalid scale: ERR_CONFIG.
  */
-mrqp_fw_pack_flags mrqp_fw_ft_pack_classic(const mrqp_fw_ft_scale *scale, unsigned node, const mrqp_fw_ft_sample *s,
-                                           mrqp_fw_frame *forces, mrqp_fw_frame *moments);
+mrqp_fw_pack_flags mrqp_fw_ft_pack_classic(const mrqp_fw_ft_scale* scale, unsigned node,
+                                           const mrqp_fw_ft_sample* s, mrqp_fw_frame* forces,
+                                           mrqp_fw_frame* moments);
 /** Host side: one classic frame (forces on TPDO1, moments on TPDO2 of `node`). */
-mrqp_fw_err mrqp_fw_ft_unpack_half(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                                   mrqp_fw_ft_half *half);
+mrqp_fw_err mrqp_fw_ft_unpack_half(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                                   mrqp_fw_ft_half* half);
 /** Host side: joins a forces half and a moments half; ERR_TORN if seq or status differ. */
-mrqp_fw_err mrqp_fw_ft_join(const mrqp_fw_ft_half *forces, const mrqp_fw_ft_half *moments, mrqp_fw_ft_sample *s);
+mrqp_fw_err mrqp_fw_ft_join(const mrqp_fw_ft_half* forces, const mrqp_fw_ft_half* moments,
+                            mrqp_fw_ft_sample* s);
 /** Host side: unpack_half on both + join. */
-mrqp_fw_err mrqp_fw_ft_unpack_classic(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *forces,
-                                      const mrqp_fw_frame *moments, unsigned node, mrqp_fw_ft_sample *s);
+mrqp_fw_err mrqp_fw_ft_unpack_classic(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* forces,
+                                      const mrqp_fw_frame* moments, unsigned node, mrqp_fw_ft_sample* s);
 
 /** Sensor side: the FD frame. Same flags as mrqp_fw_ft_pack_classic (i32 range). */
-mrqp_fw_pack_flags mrqp_fw_ft_pack_fd(const mrqp_fw_ft_scale *scale, unsigned node, const mrqp_fw_ft_sample *s,
-                                      mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_ft_pack_fd(const mrqp_fw_ft_scale* scale, unsigned node,
+                                      const mrqp_fw_ft_sample* s, mrqp_fw_frame* out);
 /** Host side: FD flag, ID, length 32, CRC, zero padding, reserved status bits (ERR_FORMAT). */
-mrqp_fw_err mrqp_fw_ft_unpack_fd(const mrqp_fw_ft_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                                 mrqp_fw_ft_sample *s);
+mrqp_fw_err mrqp_fw_ft_unpack_fd(const mrqp_fw_ft_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                                 mrqp_fw_ft_sample* s);
 
 /** Master side: tare command (MRQP_FW_FT_CMD_TARE / _CLEAR_TARE). */
-mrqp_fw_pack_flags mrqp_fw_ft_pack_tare(unsigned node, unsigned command, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_ft_pack_tare(unsigned node, unsigned command, mrqp_fw_frame* out);
 /** Sensor side: ERR_FORMAT if the check byte is not the complement, ERR_COMMAND if unknown. */
-mrqp_fw_err mrqp_fw_ft_unpack_tare(const mrqp_fw_frame *in, unsigned node, uint8_t *command);
+mrqp_fw_err mrqp_fw_ft_unpack_tare(const mrqp_fw_frame* in, unsigned node, uint8_t* command);
 
 #ifdef __cplusplus
 }

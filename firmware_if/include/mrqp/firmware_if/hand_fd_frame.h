@@ -89,9 +89,10 @@ typedef struct mrqp_fw_hand_scale {
 } mrqp_fw_hand_scale;
 
 /** 1e-4 rad (+/-3.2767 rad), 0.02 rad/s (+/-40.94 rad/s), 1 mN m (+/-2.047 N m). */
-#define MRQP_FW_HAND_SCALE_DEFAULT_INIT {1.0e-4f, 0.02f, 0.001f}
+#define MRQP_FW_HAND_SCALE_DEFAULT_INIT \
+  { 1.0e-4f, 0.02f, 0.001f }
 
-int mrqp_fw_hand_scale_valid(const mrqp_fw_hand_scale *scale);
+int mrqp_fw_hand_scale_valid(const mrqp_fw_hand_scale* scale);
 
 typedef struct mrqp_fw_hand_joint {
   float position; /**< rad */
@@ -110,7 +111,7 @@ typedef struct mrqp_fw_hand_cmd {
 typedef struct mrqp_fw_hand_fb {
   uint16_t cmd_seq_echo;
   uint8_t counter;
-  uint8_t mode; /**< mrqp_fw_hand_mode */
+  uint8_t mode;   /**< mrqp_fw_hand_mode */
   uint8_t status; /**< MRQP_FW_HAND_STATUS_* */
   uint8_t first_joint;
   uint8_t count;
@@ -128,25 +129,25 @@ unsigned mrqp_fw_hand_frames_needed(unsigned joints);
  * gets bit i set when joint[i] had a saturated field. NaN anywhere in joint[0..count): ERR_NAN.
  * Invalid scale: ERR_CONFIG. Board > 15, mode > 3, count > 11, first + count > 32, NULL: ERR_ARG.
  */
-mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale *scale, unsigned board,
-                                         const mrqp_fw_hand_cmd *cmd, mrqp_fw_frame *out,
-                                         uint32_t *saturated_joints);
+mrqp_fw_pack_flags mrqp_fw_hand_pack_cmd(const mrqp_fw_hand_scale* scale, unsigned board,
+                                         const mrqp_fw_hand_cmd* cmd, mrqp_fw_frame* out,
+                                         uint32_t* saturated_joints);
 /**
  * Board side. Checks, in order: NULL, FD frame (ERR_FORMAT), ID (ERR_ID), length >= header
  * (ERR_LENGTH), CRC (ERR_CRC), version (ERR_VERSION), count <= 11 and length equal to
  * mrqp_fw_hand_cmd_len(count) (ERR_LENGTH), mode, first + count, reserved codes (ERR_RANGE),
  * zero padding (ERR_FORMAT). Joints beyond count are zeroed.
  */
-mrqp_fw_err mrqp_fw_hand_unpack_cmd(const mrqp_fw_hand_scale *scale, const mrqp_fw_frame *in, unsigned board,
-                                    mrqp_fw_hand_cmd *cmd);
+mrqp_fw_err mrqp_fw_hand_unpack_cmd(const mrqp_fw_hand_scale* scale, const mrqp_fw_frame* in, unsigned board,
+                                    mrqp_fw_hand_cmd* cmd);
 
 /** Board side: feedback frame. Same rules as the command; status reserved bits: ERR_ARG. */
-mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale *scale, unsigned board,
-                                        const mrqp_fw_hand_fb *fb, mrqp_fw_frame *out,
-                                        uint32_t *saturated_joints);
+mrqp_fw_pack_flags mrqp_fw_hand_pack_fb(const mrqp_fw_hand_scale* scale, unsigned board,
+                                        const mrqp_fw_hand_fb* fb, mrqp_fw_frame* out,
+                                        uint32_t* saturated_joints);
 /** Host side: as mrqp_fw_hand_unpack_cmd; status reserved bits set: ERR_FORMAT. */
-mrqp_fw_err mrqp_fw_hand_unpack_fb(const mrqp_fw_hand_scale *scale, const mrqp_fw_frame *in, unsigned board,
-                                   mrqp_fw_hand_fb *fb);
+mrqp_fw_err mrqp_fw_hand_unpack_fb(const mrqp_fw_hand_scale* scale, const mrqp_fw_frame* in, unsigned board,
+                                   mrqp_fw_hand_fb* fb);
 
 #ifdef __cplusplus
 }

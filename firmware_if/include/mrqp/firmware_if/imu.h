@@ -71,9 +71,10 @@ typedef struct mrqp_fw_imu_scale {
   double counts_per_mps2;  /**< specific force */
 } mrqp_fw_imu_scale;
 
-#define MRQP_FW_IMU_SCALE_DEFAULT_INIT {1000.0, 200.0}
+#define MRQP_FW_IMU_SCALE_DEFAULT_INIT \
+  { 1000.0, 200.0 }
 
-int mrqp_fw_imu_scale_valid(const mrqp_fw_imu_scale *scale);
+int mrqp_fw_imu_scale_valid(const mrqp_fw_imu_scale* scale);
 
 /** One sample in SI units. */
 typedef struct mrqp_fw_imu_sample {
@@ -89,15 +90,15 @@ typedef struct mrqp_fw_imu_sample {
  * also sets MRQP_FW_IMU_STATUS_OVERRANGE in the transmitted status. NaN: ERR_NAN. Reserved status
  * bits, invalid node or NULL: ERR_ARG. Invalid scale: ERR_CONFIG.
  */
-mrqp_fw_pack_flags mrqp_fw_imu_pack(const mrqp_fw_imu_scale *scale, unsigned node, const mrqp_fw_imu_sample *s,
-                                    mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_imu_pack(const mrqp_fw_imu_scale* scale, unsigned node,
+                                    const mrqp_fw_imu_sample* s, mrqp_fw_frame* out);
 /**
  * Host side: ERR_FORMAT (not FD, reserved status bits), ERR_ID, ERR_LENGTH (not 24 bytes), ERR_CRC,
  * ERR_RANGE (a quaternion code -32768 or a norm off by more than MRQP_FW_IMU_NORM_TOLERANCE),
  * ERR_CONFIG (scale).
  */
-mrqp_fw_err mrqp_fw_imu_unpack(const mrqp_fw_imu_scale *scale, const mrqp_fw_frame *in, unsigned node,
-                               mrqp_fw_imu_sample *s);
+mrqp_fw_err mrqp_fw_imu_unpack(const mrqp_fw_imu_scale* scale, const mrqp_fw_frame* in, unsigned node,
+                               mrqp_fw_imu_sample* s);
 
 #ifdef __cplusplus
 }

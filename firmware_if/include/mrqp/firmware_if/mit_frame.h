@@ -64,10 +64,11 @@ typedef struct mrqp_fw_mit_ranges {
 } mrqp_fw_mit_ranges;
 
 /** Typical defaults: p +/-12.5 rad, v +/-65 rad/s, kp 0..500, kd 0..5, t +/-18 N m. */
-#define MRQP_FW_MIT_RANGES_DEFAULT_INIT {-12.5f, 12.5f, -65.0f, 65.0f, 0.0f, 500.0f, 0.0f, 5.0f, -18.0f, 18.0f}
+#define MRQP_FW_MIT_RANGES_DEFAULT_INIT \
+  { -12.5f, 12.5f, -65.0f, 65.0f, 0.0f, 500.0f, 0.0f, 5.0f, -18.0f, 18.0f }
 
 /** Non-zero if every min < max and all are finite. */
-int mrqp_fw_mit_ranges_valid(const mrqp_fw_mit_ranges *ranges);
+int mrqp_fw_mit_ranges_valid(const mrqp_fw_mit_ranges* ranges);
 
 typedef struct mrqp_fw_mit_cmd {
   float p;  /**< position setpoint, rad */
@@ -90,32 +91,32 @@ typedef enum mrqp_fw_mit_kind {
   MRQP_FW_MIT_KIND_ENABLE,
   MRQP_FW_MIT_KIND_DISABLE,
   MRQP_FW_MIT_KIND_ZERO,
-  MRQP_FW_MIT_KIND_INVALID      /**< not a valid motor frame (NULL, format, id, length) */
+  MRQP_FW_MIT_KIND_INVALID /**< not a valid motor frame (NULL, format, id, length) */
 } mrqp_fw_mit_kind;
 
 /**
  * Command frame for `motor_id`. Saturation bits MRQP_FW_MIT_SAT_*, MRQP_FW_MIT_ADJ_SPECIAL.
  * NaN in any field: ERR_NAN (no frame). Invalid ranges: ERR_CONFIG. Invalid id / NULL: ERR_ARG.
  */
-mrqp_fw_pack_flags mrqp_fw_mit_pack_cmd(const mrqp_fw_mit_ranges *ranges, unsigned motor_id,
-                                        const mrqp_fw_mit_cmd *cmd, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_mit_pack_cmd(const mrqp_fw_mit_ranges* ranges, unsigned motor_id,
+                                        const mrqp_fw_mit_cmd* cmd, mrqp_fw_frame* out);
 /** Special command (kind ENABLE, DISABLE or ZERO) for `motor_id`; ERR_ARG otherwise. */
-mrqp_fw_pack_flags mrqp_fw_mit_pack_special(unsigned motor_id, mrqp_fw_mit_kind kind, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_mit_pack_special(unsigned motor_id, mrqp_fw_mit_kind kind, mrqp_fw_frame* out);
 /** Motor side: what a received frame is (envelope: classic, id 1..127, DLC 8). */
-mrqp_fw_mit_kind mrqp_fw_mit_classify(const mrqp_fw_frame *in);
+mrqp_fw_mit_kind mrqp_fw_mit_classify(const mrqp_fw_frame* in);
 /**
  * Motor side: decodes an impedance command. ERR_COMMAND for a special command, ERR_ID for an id
  * outside 1..127, ERR_CONFIG for invalid ranges. *motor_id (optional, may be NULL) gets the id.
  */
-mrqp_fw_err mrqp_fw_mit_unpack_cmd(const mrqp_fw_mit_ranges *ranges, const mrqp_fw_frame *in,
-                                   uint8_t *motor_id, mrqp_fw_mit_cmd *cmd);
+mrqp_fw_err mrqp_fw_mit_unpack_cmd(const mrqp_fw_mit_ranges* ranges, const mrqp_fw_frame* in,
+                                   uint8_t* motor_id, mrqp_fw_mit_cmd* cmd);
 
 /** Motor side: reply frame. Saturation bits MRQP_FW_MIT_SAT_P, _V, _T; NaN: ERR_NAN. */
-mrqp_fw_pack_flags mrqp_fw_mit_pack_reply(const mrqp_fw_mit_ranges *ranges, const mrqp_fw_mit_reply *reply,
-                                          mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_mit_pack_reply(const mrqp_fw_mit_ranges* ranges, const mrqp_fw_mit_reply* reply,
+                                          mrqp_fw_frame* out);
 /** Master: decodes a reply (classic, ID 0x000, DLC 6, motor id 1..127 else ERR_RANGE). */
-mrqp_fw_err mrqp_fw_mit_unpack_reply(const mrqp_fw_mit_ranges *ranges, const mrqp_fw_frame *in,
-                                     mrqp_fw_mit_reply *reply);
+mrqp_fw_err mrqp_fw_mit_unpack_reply(const mrqp_fw_mit_ranges* ranges, const mrqp_fw_frame* in,
+                                     mrqp_fw_mit_reply* reply);
 
 #ifdef __cplusplus
 }

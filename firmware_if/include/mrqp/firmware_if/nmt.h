@@ -44,9 +44,9 @@ int mrqp_fw_nmt_cmd_valid(unsigned cmd);
 int mrqp_fw_nmt_state_valid(unsigned state);
 
 /** NMT command frame; node 0 addresses all nodes. ERR_ARG for an unknown cmd or node > 127. */
-mrqp_fw_pack_flags mrqp_fw_nmt_pack(mrqp_fw_nmt_cmd cmd, unsigned node, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_nmt_pack(mrqp_fw_nmt_cmd cmd, unsigned node, mrqp_fw_frame* out);
 /** Validates id 0x000, classic, DLC 2, known command (ERR_COMMAND), node <= 127 (ERR_RANGE). */
-mrqp_fw_err mrqp_fw_nmt_unpack(const mrqp_fw_frame *in, mrqp_fw_nmt_cmd *cmd, uint8_t *node);
+mrqp_fw_err mrqp_fw_nmt_unpack(const mrqp_fw_frame* in, mrqp_fw_nmt_cmd* cmd, uint8_t* node);
 /** Non-zero if an NMT command for `target` (0 = all) addresses the node `self`. */
 int mrqp_fw_nmt_addresses(uint8_t target, uint8_t self);
 
@@ -60,9 +60,9 @@ mrqp_fw_nmt_state mrqp_fw_nmt_next_state(mrqp_fw_nmt_state state, mrqp_fw_nmt_cm
 mrqp_fw_nmt_state mrqp_fw_nmt_boot_complete(mrqp_fw_nmt_state state);
 
 /** Heartbeat (or boot-up, state BOOTUP) frame of `node`. ERR_ARG for invalid node or state. */
-mrqp_fw_pack_flags mrqp_fw_heartbeat_pack(unsigned node, mrqp_fw_nmt_state state, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_heartbeat_pack(unsigned node, mrqp_fw_nmt_state state, mrqp_fw_frame* out);
 /** Validates id 0x701..0x77F, classic, DLC 1, known state code (ERR_COMMAND). */
-mrqp_fw_err mrqp_fw_heartbeat_unpack(const mrqp_fw_frame *in, uint8_t *node, mrqp_fw_nmt_state *state);
+mrqp_fw_err mrqp_fw_heartbeat_unpack(const mrqp_fw_frame* in, uint8_t* node, mrqp_fw_nmt_state* state);
 
 #ifdef __cplusplus
 }

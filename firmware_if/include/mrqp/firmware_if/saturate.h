@@ -29,7 +29,7 @@ int mrqp_fw_isfinite_f(float x);
  * Returns CONV_OK, CONV_SAT_LOW / CONV_SAT_HIGH (x <= lo - 1/2 or x >= hi + 1/2: *out = lo or hi)
  * or CONV_NAN (*out not written).
  */
-mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t *out);
+mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t* out);
 
 /**
  * Linear map of [min, max] onto the unsigned codes 0 .. 2^bits - 1 (1 <= bits <= 32):
@@ -38,7 +38,7 @@ mrqp_fw_conv mrqp_fw_quantize_int(double x, int64_t lo, int64_t hi, int64_t *out
  * Returns CONV_BAD_SCALE (nothing written) unless min < max, both finite.
  * Quantisation error inside the range: at most (max - min) / (2 (2^bits - 1)).
  */
-mrqp_fw_conv mrqp_fw_quantize_linear(double x, double min, double max, unsigned bits, uint32_t *code);
+mrqp_fw_conv mrqp_fw_quantize_linear(double x, double min, double max, unsigned bits, uint32_t* code);
 /** Inverse of mrqp_fw_quantize_linear: min + code (max - min) / (2^bits - 1). */
 double mrqp_fw_dequantize_linear(uint32_t code, double min, double max, unsigned bits);
 
@@ -48,7 +48,7 @@ double mrqp_fw_dequantize_linear(uint32_t code, double min, double max, unsigned
  * "invalid" and never produced. Returns CONV_BAD_SCALE unless lsb is finite and > 0.
  * Quantisation error inside the range: at most lsb / 2.
  */
-mrqp_fw_conv mrqp_fw_quantize_fixed(double x, double lsb, unsigned bits, int32_t *code);
+mrqp_fw_conv mrqp_fw_quantize_fixed(double x, double lsb, unsigned bits, int32_t* code);
 /** code * lsb. */
 double mrqp_fw_dequantize_fixed(int32_t code, double lsb);
 

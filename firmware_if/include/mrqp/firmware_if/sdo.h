@@ -77,7 +77,7 @@ extern "C" {
 #define MRQP_FW_SDO_ABORT_NO_DATA 0x08000024u
 
 /** The name of an abort code as worded by CiA 301; "unknown SDO abort code" otherwise. */
-const char *mrqp_fw_sdo_abort_str(uint32_t code);
+const char* mrqp_fw_sdo_abort_str(uint32_t code);
 
 /** What an SDO frame is. */
 typedef enum mrqp_fw_sdo_kind {
@@ -95,57 +95,57 @@ typedef enum mrqp_fw_sdo_kind {
 /** A decoded SDO frame. Fields not used by `kind` are zero. */
 typedef struct mrqp_fw_sdo_msg {
   mrqp_fw_sdo_kind kind;
-  uint8_t node;         /**< from the COB-ID */
-  uint8_t from_server;  /**< 1 for 0x580 + node, 0 for 0x600 + node */
-  uint16_t index;       /**< initiate and abort frames */
-  uint8_t subindex;     /**< initiate and abort frames */
-  uint8_t expedited;    /**< initiate download req / upload resp: data in the frame */
+  uint8_t node;           /**< from the COB-ID */
+  uint8_t from_server;    /**< 1 for 0x580 + node, 0 for 0x600 + node */
+  uint16_t index;         /**< initiate and abort frames */
+  uint8_t subindex;       /**< initiate and abort frames */
+  uint8_t expedited;      /**< initiate download req / upload resp: data in the frame */
   uint8_t size_indicated; /**< initiate: size (expedited) or total size (segmented) is given */
-  uint8_t toggle;       /**< segment frames: toggle bit */
-  uint8_t last;         /**< segment request/response with data: c bit (no more segments) */
-  uint8_t n;            /**< number of valid bytes in data: expedited 1..4 (4 if unspecified), segment 0..7 */
-  uint32_t size;        /**< segmented initiate: total size in bytes */
-  uint32_t abort_code;  /**< abort */
-  uint8_t data[7];      /**< expedited or segment data */
+  uint8_t toggle;         /**< segment frames: toggle bit */
+  uint8_t last;           /**< segment request/response with data: c bit (no more segments) */
+  uint8_t n;           /**< number of valid bytes in data: expedited 1..4 (4 if unspecified), segment 0..7 */
+  uint32_t size;       /**< segmented initiate: total size in bytes */
+  uint32_t abort_code; /**< abort */
+  uint8_t data[7];     /**< expedited or segment data */
 } mrqp_fw_sdo_msg;
 
 /* ---- expedited transfer ---- */
 
 /** Client: expedited write of n = 1..4 bytes. ERR_ARG for invalid node, n or NULL data. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_req(unsigned node, uint16_t index, uint8_t subindex,
-                                                 const uint8_t *data, unsigned n, mrqp_fw_frame *out);
+                                                 const uint8_t* data, unsigned n, mrqp_fw_frame* out);
 /** Server: write confirmed. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_resp(unsigned node, uint16_t index, uint8_t subindex,
-                                                  mrqp_fw_frame *out);
+                                                  mrqp_fw_frame* out);
 /** Client: read request. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_req(unsigned node, uint16_t index, uint8_t subindex,
-                                               mrqp_fw_frame *out);
+                                               mrqp_fw_frame* out);
 /** Server: expedited read response with n = 1..4 bytes. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_resp(unsigned node, uint16_t index, uint8_t subindex,
-                                                const uint8_t *data, unsigned n, mrqp_fw_frame *out);
+                                                const uint8_t* data, unsigned n, mrqp_fw_frame* out);
 /** Abort from the client (from_server 0, COB 0x600 + node) or the server (0x580 + node). */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_abort(unsigned node, int from_server, uint16_t index, uint8_t subindex,
-                                          uint32_t abort_code, mrqp_fw_frame *out);
+                                          uint32_t abort_code, mrqp_fw_frame* out);
 
 /** Little-endian values for expedited data (n = 1, 2 or 4). */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_u32(unsigned node, uint16_t index, uint8_t subindex,
-                                                 uint32_t value, unsigned n, mrqp_fw_frame *out);
+                                                 uint32_t value, unsigned n, mrqp_fw_frame* out);
 
 /* ---- segmented transfer ---- */
 
 /** Client: initiate a segmented write of `size` bytes (size indicated). */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_init_segmented(unsigned node, uint16_t index, uint8_t subindex,
-                                                            uint32_t size, mrqp_fw_frame *out);
+                                                            uint32_t size, mrqp_fw_frame* out);
 /** Server: initiate a segmented read response announcing `size` bytes. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_resp_segmented(unsigned node, uint16_t index, uint8_t subindex,
-                                                          uint32_t size, mrqp_fw_frame *out);
+                                                          uint32_t size, mrqp_fw_frame* out);
 /** Client (download segment request) or server (upload segment response): n = 0..7 bytes. */
 mrqp_fw_pack_flags mrqp_fw_sdo_pack_segment(unsigned node, int from_server, unsigned toggle,
-                                            const uint8_t *data, unsigned n, int last, mrqp_fw_frame *out);
+                                            const uint8_t* data, unsigned n, int last, mrqp_fw_frame* out);
 /** Server: download segment acknowledged. */
-mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_seg_resp(unsigned node, unsigned toggle, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_sdo_pack_download_seg_resp(unsigned node, unsigned toggle, mrqp_fw_frame* out);
 /** Client: upload segment request. */
-mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_seg_req(unsigned node, unsigned toggle, mrqp_fw_frame *out);
+mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_seg_req(unsigned node, unsigned toggle, mrqp_fw_frame* out);
 
 /**
  * Decodes any SDO frame. Validates: classic, COB-ID 0x581..0x5FF or 0x601..0x67F (ERR_ID),
@@ -154,7 +154,7 @@ mrqp_fw_pack_flags mrqp_fw_sdo_pack_upload_seg_req(unsigned node, unsigned toggl
  * drives do not all clear them. Expedited without size indication yields n = 4; a segmented
  * initiate without size indication is accepted with size_indicated 0.
  */
-mrqp_fw_err mrqp_fw_sdo_unpack(const mrqp_fw_frame *in, mrqp_fw_sdo_msg *msg);
+mrqp_fw_err mrqp_fw_sdo_unpack(const mrqp_fw_frame* in, mrqp_fw_sdo_msg* msg);
 
 #ifdef __cplusplus
 }

@@ -49,31 +49,32 @@ typedef struct mrqp_fw_sdo_client {
   uint16_t index;
   uint8_t subindex;
   uint8_t toggle;
-  uint8_t *rx;          /**< upload destination (caller-owned) */
-  const uint8_t *tx;    /**< download source (caller-owned) */
-  uint32_t capacity;    /**< upload: capacity of rx; download: bytes to write */
-  uint32_t size;        /**< upload: announced size (0 = not indicated) */
-  uint32_t count;       /**< bytes transferred so far (upload: bytes in rx when DONE) */
-  uint32_t abort_code;  /**< after ABORT_SEND / ABORTED */
+  uint8_t* rx;         /**< upload destination (caller-owned) */
+  const uint8_t* tx;   /**< download source (caller-owned) */
+  uint32_t capacity;   /**< upload: capacity of rx; download: bytes to write */
+  uint32_t size;       /**< upload: announced size (0 = not indicated) */
+  uint32_t count;      /**< bytes transferred so far (upload: bytes in rx when DONE) */
+  uint32_t abort_code; /**< after ABORT_SEND / ABORTED */
 } mrqp_fw_sdo_client;
 
-void mrqp_fw_sdo_client_reset(mrqp_fw_sdo_client *c);
+void mrqp_fw_sdo_client_reset(mrqp_fw_sdo_client* c);
 
 /** Starts reading node:index:subindex into buf[0..capacity). */
-mrqp_fw_sdo_step mrqp_fw_sdo_client_start_upload(mrqp_fw_sdo_client *c, unsigned node, uint16_t index,
-                                                 uint8_t subindex, uint8_t *buf, uint32_t capacity,
-                                                 mrqp_fw_frame *out);
+mrqp_fw_sdo_step mrqp_fw_sdo_client_start_upload(mrqp_fw_sdo_client* c, unsigned node, uint16_t index,
+                                                 uint8_t subindex, uint8_t* buf, uint32_t capacity,
+                                                 mrqp_fw_frame* out);
 /** Starts writing data[0..n) (n >= 1) to node:index:subindex. */
-mrqp_fw_sdo_step mrqp_fw_sdo_client_start_download(mrqp_fw_sdo_client *c, unsigned node, uint16_t index,
-                                                   uint8_t subindex, const uint8_t *data, uint32_t n,
-                                                   mrqp_fw_frame *out);
+mrqp_fw_sdo_step mrqp_fw_sdo_client_start_download(mrqp_fw_sdo_client* c, unsigned node, uint16_t index,
+                                                   uint8_t subindex, const uint8_t* data, uint32_t n,
+                                                   mrqp_fw_frame* out);
 /**
  * Feeds a received frame. Protocol violations by the server (wrong index, toggle, command,
  * size beyond capacity) make the client abort with the matching CiA 301 code (ABORT_SEND).
  */
-mrqp_fw_sdo_step mrqp_fw_sdo_client_on_frame(mrqp_fw_sdo_client *c, const mrqp_fw_frame *in, mrqp_fw_frame *out);
+mrqp_fw_sdo_step mrqp_fw_sdo_client_on_frame(mrqp_fw_sdo_client* c, const mrqp_fw_frame* in,
+                                             mrqp_fw_frame* out);
 /** The server timed out: abort frame 0x05040000 in out (ABORT_SEND), or ERROR when idle. */
-mrqp_fw_sdo_step mrqp_fw_sdo_client_timeout(mrqp_fw_sdo_client *c, mrqp_fw_frame *out);
+mrqp_fw_sdo_step mrqp_fw_sdo_client_timeout(mrqp_fw_sdo_client* c, mrqp_fw_frame* out);
 
 #ifdef __cplusplus
 }

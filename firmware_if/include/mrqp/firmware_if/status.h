@@ -30,20 +30,20 @@ extern "C" {
 /** Error codes returned by unpack / validation functions. */
 typedef enum mrqp_fw_err {
   MRQP_FW_OK = 0,
-  MRQP_FW_ERR_NULL = 1,     /**< a required pointer argument is NULL */
-  MRQP_FW_ERR_ID = 2,       /**< the CAN identifier does not belong to this message / node */
-  MRQP_FW_ERR_FORMAT = 3,   /**< classic/FD/extended/remote mismatch, non-zero padding or reserved bits */
-  MRQP_FW_ERR_LENGTH = 4,   /**< wrong data length */
-  MRQP_FW_ERR_CRC = 5,      /**< application CRC mismatch */
-  MRQP_FW_ERR_RANGE = 6,    /**< a field holds a value outside its allowed range (reserved code, count, node) */
-  MRQP_FW_ERR_COMMAND = 7,  /**< unknown or unsupported command specifier / command / state code */
-  MRQP_FW_ERR_VERSION = 8,  /**< unsupported protocol version in the frame */
-  MRQP_FW_ERR_CONFIG = 9,   /**< invalid scaling or range configuration passed by the caller */
-  MRQP_FW_ERR_TORN = 10     /**< two frames of one sample carry different sequence/status: torn pair */
+  MRQP_FW_ERR_NULL = 1,   /**< a required pointer argument is NULL */
+  MRQP_FW_ERR_ID = 2,     /**< the CAN identifier does not belong to this message / node */
+  MRQP_FW_ERR_FORMAT = 3, /**< classic/FD/extended/remote mismatch, non-zero padding or reserved bits */
+  MRQP_FW_ERR_LENGTH = 4, /**< wrong data length */
+  MRQP_FW_ERR_CRC = 5,    /**< application CRC mismatch */
+  MRQP_FW_ERR_RANGE = 6,  /**< a field holds a value outside its allowed range (reserved code, count, node) */
+  MRQP_FW_ERR_COMMAND = 7, /**< unknown or unsupported command specifier / command / state code */
+  MRQP_FW_ERR_VERSION = 8, /**< unsupported protocol version in the frame */
+  MRQP_FW_ERR_CONFIG = 9,  /**< invalid scaling or range configuration passed by the caller */
+  MRQP_FW_ERR_TORN = 10    /**< two frames of one sample carry different sequence/status: torn pair */
 } mrqp_fw_err;
 
 /** A static, human-readable name of an error code (never NULL). */
-const char *mrqp_fw_err_str(mrqp_fw_err err);
+const char* mrqp_fw_err_str(mrqp_fw_err err);
 
 /** Result of a pack function: saturation bits (low 16) and error bits (high 8). */
 typedef uint32_t mrqp_fw_pack_flags;
@@ -61,18 +61,17 @@ typedef uint32_t mrqp_fw_pack_flags;
 #define MRQP_FW_PACK_ERR_MASK 0xFF000000u
 
 /** Non-zero when the pack failed (no valid frame was produced). */
-static inline int mrqp_fw_pack_failed(mrqp_fw_pack_flags flags)
-{
+static inline int mrqp_fw_pack_failed(mrqp_fw_pack_flags flags) {
   return (flags & MRQP_FW_PACK_ERR_MASK) != 0u;
 }
 
 /** Result of a scalar SI <-> wire-integer conversion. */
 typedef enum mrqp_fw_conv {
-  MRQP_FW_CONV_OK = 0,        /**< in range (rounded to the nearest code) */
-  MRQP_FW_CONV_SAT_LOW = 1,   /**< below the range: the output holds the lowest code */
-  MRQP_FW_CONV_SAT_HIGH = 2,  /**< above the range: the output holds the highest code */
-  MRQP_FW_CONV_NAN = 3,       /**< NaN input: the output was not written */
-  MRQP_FW_CONV_BAD_SCALE = 4  /**< invalid scale: the output was not written */
+  MRQP_FW_CONV_OK = 0,       /**< in range (rounded to the nearest code) */
+  MRQP_FW_CONV_SAT_LOW = 1,  /**< below the range: the output holds the lowest code */
+  MRQP_FW_CONV_SAT_HIGH = 2, /**< above the range: the output holds the highest code */
+  MRQP_FW_CONV_NAN = 3,      /**< NaN input: the output was not written */
+  MRQP_FW_CONV_BAD_SCALE = 4 /**< invalid scale: the output was not written */
 } mrqp_fw_conv;
 
 #ifdef __cplusplus

@@ -39,9 +39,10 @@ class EmulatedCia402Drive {
   static constexpr TimeNs kNever = INT64_MAX;
 
   struct Options {
-    std::uint8_t node = 1;       ///< CANopen node id 1..127
-    TimeNs boot_delay = 2000000; ///< reset -> boot-up message (2 ms)
-    TimeNs response_delay = 0;   ///< SDO answer, TPDOs and error reset: ready this long after the request / SYNC
+    std::uint8_t node = 1;        ///< CANopen node id 1..127
+    TimeNs boot_delay = 2000000;  ///< reset -> boot-up message (2 ms)
+    TimeNs response_delay =
+        0;  ///< SDO answer, TPDOs and error reset: ready this long after the request / SYNC
   };
 
   /// What the TPDOs report, in wire units.
@@ -97,8 +98,7 @@ class EmulatedCia402Drive {
   /// Answer SDO writes to index:sub with this abort code.
   void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
   /// Report this mode in the TPDO2 mode display instead of 0x6060.
-  void force_mode_display(std::int8_t mode) noexcept
-  {
+  void force_mode_display(std::int8_t mode) noexcept {
     forced_mode_ = mode;
     force_mode_ = true;
   }

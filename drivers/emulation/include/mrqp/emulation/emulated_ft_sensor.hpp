@@ -26,8 +26,8 @@ using drivers::TimeNs;
 class EmulatedFtSensor {
  public:
   struct Options {
-    std::uint8_t node = 1;    ///< 1..127
-    bool fd = false;          ///< the CAN FD frame instead of the classic pair
+    std::uint8_t node = 1;  ///< 1..127
+    bool fd = false;        ///< the CAN FD frame instead of the classic pair
     mrqp_fw_ft_scale scale = MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;  ///< use the FD default with fd
     TimeNs response_delay = 15000;
   };

@@ -30,12 +30,12 @@ class EmulatedHandBoard {
   static constexpr TimeNs kNever = INT64_MAX;
 
   struct Options {
-    std::uint8_t board = 0;      ///< 0..15
-    std::uint8_t joints = 20;    ///< 1..32
-    std::size_t joint = 0;       ///< the host's index of joint 0 of this board
+    std::uint8_t board = 0;    ///< 0..15
+    std::uint8_t joints = 20;  ///< 1..32
+    std::size_t joint = 0;     ///< the host's index of joint 0 of this board
     mrqp_fw_hand_scale scale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
-    double kp = 5.0;             ///< N m/rad: the board's position gain
-    double kd = 0.05;            ///< N m s/rad
+    double kp = 5.0;   ///< N m/rad: the board's position gain
+    double kd = 0.05;  ///< N m s/rad
     TimeNs response_delay = 20000;
     TimeNs command_timeout = 0;  ///< 0: none
   };

@@ -24,8 +24,8 @@ namespace mrqp::emulation {
 class EmulatedMitMotor {
  public:
   struct Options {
-    std::uint8_t motor_id = 1;   ///< 1..127
-    std::size_t joint = 0;       ///< the host's index of this motor's joint
+    std::uint8_t motor_id = 1;  ///< 1..127
+    std::size_t joint = 0;      ///< the host's index of this motor's joint
     mrqp_fw_mit_ranges ranges = MRQP_FW_MIT_RANGES_DEFAULT_INIT;
     TimeNs response_delay = 30000;  ///< command -> reply (30 us)
   };

@@ -23,15 +23,13 @@ class SimDeviceNode final : public drivers::SimListener {
   SimDeviceNode& operator=(const SimDeviceNode&) = delete;
 
   /// Set-up: one more device behind this node.
-  void add(Device& device)
-  {
+  void add(Device& device) {
     devices_.push_back(&device);
     rearm();
   }
   drivers::SimNode& node() noexcept { return node_; }
   /// After a device was changed from outside (power_on(), a fault switch with a timed effect).
-  void rearm() noexcept
-  {
+  void rearm() noexcept {
     drivers::TimeNs t = INT64_MAX;
     for (Device* d : devices_) {
       t = std::min(t, d->next_event());
@@ -43,8 +41,8 @@ class SimDeviceNode final : public drivers::SimListener {
     }
   }
 
-  void on_receive(drivers::SimNode&, drivers::ReceiveResult kind, const drivers::RxFrame& rx) noexcept override
-  {
+  void on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
+                  const drivers::RxFrame& rx) noexcept override {
     if (kind != drivers::ReceiveResult::Frame) {
       return;
     }
@@ -53,8 +51,7 @@ class SimDeviceNode final : public drivers::SimListener {
     }
     rearm();
   }
-  void on_timer(drivers::SimNode&, drivers::TimeNs now) noexcept override
-  {
+  void on_timer(drivers::SimNode&, drivers::TimeNs now) noexcept override {
     for (Device* d : devices_) {
       d->advance(now);
     }

@@ -66,9 +66,9 @@ class NmtBoot {
   bool begun_ = false;
   bool booted_ = false;
   bool echo_ = false;
-  bool sent_ = false;     ///< the boot command was handed to the bus
+  bool sent_ = false;  ///< the boot command was handed to the bus
   TimeNs sent_at_ = 0;
-  bool echoed_ = false;   ///< ... and came back from it
+  bool echoed_ = false;  ///< ... and came back from it
 };
 
 }  // namespace mrqp::drivers

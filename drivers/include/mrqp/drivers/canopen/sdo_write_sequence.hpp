@@ -26,7 +26,7 @@ namespace mrqp::drivers {
 struct SdoWrite {
   std::uint16_t index;
   std::uint8_t subindex;
-  std::uint8_t size;    ///< 1, 2 or 4 bytes (expedited)
+  std::uint8_t size;  ///< 1, 2 or 4 bytes (expedited)
   std::uint32_t value;
 };
 
