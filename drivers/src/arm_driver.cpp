@@ -1,4 +1,5 @@
-// mrqp drivers -- arm drives, CiA 402 master: the real-time part. See arm_driver.hpp.
+// mrqp drivers -- arm drives, CiA 402 master: the real-time part. See
+// arm_driver.hpp.
 #include "mrqp/drivers/arm_driver.hpp"
 
 #include "driver_util.hpp"
@@ -43,6 +44,10 @@ const char* arm_phase_str(ArmPhase phase) noexcept {
       return "running";
     case ArmPhase::Failed:
       return "failed";
+    case ArmPhase::Stopping:
+      return "stopping";
+    case ArmPhase::Stopped:
+      return "stopped";
   }
   return "unknown";
 }
@@ -66,6 +71,13 @@ void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept {
 
 void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept {
   d.events |= flags;
+  if (d.recovery != Drive::Recovery::None) {
+    // A recovery's reconfiguration failed: this drive stays down, the others
+    // run on.
+    d.recovery = Drive::Recovery::None;
+    d.recovery_failed = true;
+    return;
+  }
   d.sticky |= flags;
   phase_ = ArmPhase::Failed;
 }
@@ -74,9 +86,11 @@ void ArmDriver::start(TimeNs now) noexcept {
   phase_ = config_.reset == NmtReset::None ? ArmPhase::Configuring : ArmPhase::Resetting;
   phase_since_ = now;
   master_heartbeat_.restart(now);
+  exit_nmt_stage_ = false;
   for (BusSlot& b : buses_) {
     b.cyclic_sent = false;
     b.sync.restart();
+    b.jitter.restart();
   }
   for (Drive& d : drives_) {
     d.sdo.restart();
@@ -86,7 +100,14 @@ void ArmDriver::start(TimeNs now) noexcept {
     d.faults.sdo_abort_code = 0;
     d.faults.sdo_index = 0;
     d.faults.sdo_subindex = 0;
+    d.faults.sdo_check_failed = false;
+    d.faults.tolerated_aborts = 0;
     d.faults.missed_cycles = 0;
+    d.recovery = Drive::Recovery::None;
+    d.rebooted = false;
+    d.recovery_failed = false;
+    d.attempted = false;
+    d.exit_nmt_sent = false;
     d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
     d.target_since = now;
     d.sp_position_valid = false;
@@ -102,6 +123,10 @@ void ArmDriver::start(TimeNs now) noexcept {
 }
 
 void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept {
+  if (phase_ == ArmPhase::Stopping || phase_ == ArmPhase::Stopped) {
+    return;  // the safe exit owns the drives now
+  }
+  wanted_ = target;
   for (Drive& d : drives_) {
     d.target = target;
     d.target_since = now;
@@ -243,6 +268,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         d.faults.sdo_subindex = d.sdo.current().subindex;
         fail_boot(d, fault::kTimeout | fault::kBootFailed);
       }
+      d.faults.tolerated_aborts = d.sdo.tolerated();
       all = all && d.sdo.done();
     }
     if (phase_ == ArmPhase::Configuring && all) {
@@ -256,12 +282,27 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
     }
   }
 
+  if (phase_ == ArmPhase::Running) {
+    for (Drive& d : drives_) {
+      step_recovery(d, now);
+    }
+  }
+  if (phase_ == ArmPhase::Stopping) {
+    step_safe_exit(now);
+  }
+
   const TimeNs nmt_grace = 2 * config_.cycle_period;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     Drive& d = drives_[i];
     const BusSlot& slot = buses_[d.cfg.bus];
     std::uint32_t flags = d.events | d.sticky;
     d.events = 0;
+    if (d.recovery != Drive::Recovery::None) {
+      flags |= fault::kRecovering;
+    }
+    if (d.recovery_failed) {
+      flags |= fault::kBootFailed;
+    }
     d.state.fresh = d.got_tpdo1;
 
     if (phase_ == ArmPhase::Running && slot.cyclic_sent) {
@@ -287,7 +328,8 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         if (is_fault_state(s)) {
           flags |= fault::kDeviceFault;
           if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !is_fault_state(d.prev_state)) {
-            // Fell into Fault while enabled: stay there until the caller asks again.
+            // Fell into Fault while enabled: stay there until the caller asks
+            // again.
             d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
             d.target_since = now;
           }
@@ -307,15 +349,25 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         flags |= fault::kTimeout;
       }
     }
+    d.faults.nmt_state = d.state.nmt_state;
     d.faults.flags = flags;
     routers_.device(i) = d.faults;
+  }
+  if (phase_ == ArmPhase::Running && config_.recovery == RecoveryPolicy::Automatic && !safe_state_) {
+    for (std::size_t i = 0; i < drives_.size(); ++i) {
+      Drive& d = drives_[i];
+      if (needs_recovery(i) && (!d.attempted || now - d.recovery_attempt >= config_.recovery_retry)) {
+        start_recovery(d, now);
+      }
+    }
   }
   return routers_.publish();
 }
 
 std::size_t ArmDriver::transmit(TimeNs now) noexcept {
   std::size_t count = 0;
-  // One-shot frames (NMT, SDO) first; kept for the next cycle when the queue is full.
+  // One-shot frames (NMT, SDO) first; kept for the next cycle when the queue is
+  // full.
   for (Drive& d : drives_) {
     if (d.has_pending && send(d.cfg.bus, &d, d.pending)) {
       d.has_pending = false;
@@ -325,6 +377,9 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
       }
       if (d.sdo.busy()) {
         d.sdo.sent(now);
+      }
+      if (phase_ == ArmPhase::Stopping && exit_nmt_stage_) {
+        d.exit_nmt_sent = true;  // the NMT command of the safe exit is on its way
       }
     }
   }
@@ -363,65 +418,30 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
       break;
     }
     case ArmPhase::Running:
-      for (std::size_t s = 0; s < buses_.size(); ++s) {
-        BusSlot& slot = buses_[s];
-        if (!slot.has_drives) {
-          continue;
-        }
-        for (Drive& d : drives_) {
-          if (d.cfg.bus != s) {
-            continue;
-          }
-          const mrqp_fw_cia402_state current = d.state.valid ? d.state.state : MRQP_FW_CIA402_UNKNOWN;
-          // A drive in Fault is only reset when the caller asks for Operation enabled again.
-          const std::uint16_t cw =
-              is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
-                  ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
-                  : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
-          const bool enabled =
-              current == MRQP_FW_CIA402_OPERATION_ENABLED && d.target == MRQP_FW_CIA402_OPERATION_ENABLED;
-          // Not enabled, or no setpoint yet: hold the measured position (raw increments), no torque.
-          std::int32_t position_inc = d.state.position_inc;
-          std::int16_t torque_permille = 0;
-          bool limited = false;
-          if (enabled && d.sp_position_valid && d.cfg.mode == MRQP_FW_MODE_CSP) {
-            limited =
-                mrqp_fw_arm_position_to_inc(&d.cfg.scale, d.sp_position, &position_inc) != MRQP_FW_CONV_OK;
-          }
-          if (enabled && d.sp_torque_valid) {
-            limited = limited || mrqp_fw_arm_torque_to_permille(&d.cfg.scale, d.sp_torque,
-                                                                &torque_permille) != MRQP_FW_CONV_OK;
-          }
-          mrqp_fw_frame f;
-          const mrqp_fw_arm_rpdo1 raw{cw, position_inc, torque_permille};
-          const mrqp_fw_pack_flags pf = mrqp_fw_arm_pack_rpdo1(d.cfg.node, &raw, &f);
-          if (mrqp_fw_pack_failed(pf)) {
-            continue;  // cannot happen: node validated at construction
-          }
-          if (limited) {
-            ++d.faults.limited_setpoints;
-            d.events |= fault::kSetpointLimited;
-          }
-          d.state.controlword = cw;
-          if (send(s, &d, f)) {
-            ++count;
-          }
-        }
-        if (config_.produce_sync) {
-          mrqp_fw_frame f;
-          slot.sync.process(now, &f);
-          if (send(s, nullptr, f)) {
-            ++count;
-          }
-        }
-        // Feedback is expected from now on, even if the SYNC could not be queued (a full queue
-        // then shows up as missing feedback, not as silence).
-        slot.cyclic_sent = true;
+      for (Drive& d : drives_) {
+        transmit_recovery(d, &count, now);
+      }
+      count += transmit_cyclic(now);
+      break;
+    case ArmPhase::Stopping: {
+      if (!exit_nmt_stage_) {
+        count += transmit_cyclic(now);
+        break;
+      }
+      bool all_sent = true;
+      for (const Drive& d : drives_) {
+        all_sent = all_sent && d.exit_nmt_sent;
+      }
+      if (all_sent) {
+        phase_ = ArmPhase::Stopped;
+        phase_since_ = now;
       }
       break;
+    }
     case ArmPhase::Idle:
     case ArmPhase::Resetting:
     case ArmPhase::Failed:
+    case ArmPhase::Stopped:
       break;
   }
 
@@ -432,6 +452,70 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
         ++count;
       }
     }
+  }
+  return count;
+}
+
+std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
+  std::size_t count = 0;
+  for (std::size_t s = 0; s < buses_.size(); ++s) {
+    BusSlot& slot = buses_[s];
+    if (!slot.has_drives) {
+      continue;
+    }
+    for (Drive& d : drives_) {
+      if (d.cfg.bus != s) {
+        continue;
+      }
+      const mrqp_fw_cia402_state current = d.state.valid ? d.state.state : MRQP_FW_CIA402_UNKNOWN;
+      // A drive in Fault is only reset when the caller asks for Operation
+      // enabled again.
+      const std::uint16_t cw =
+          is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
+              ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
+              : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
+      const bool enabled =
+          current == MRQP_FW_CIA402_OPERATION_ENABLED && d.target == MRQP_FW_CIA402_OPERATION_ENABLED;
+      // Not enabled, or no setpoint yet: hold the measured position (raw
+      // increments), no torque.
+      std::int32_t position_inc = d.state.position_inc;
+      std::int16_t torque_permille = 0;
+      bool limited = false;
+      if (enabled && d.sp_position_valid && d.cfg.mode == MRQP_FW_MODE_CSP) {
+        limited = mrqp_fw_arm_position_to_inc(&d.cfg.scale, d.sp_position, &position_inc) != MRQP_FW_CONV_OK;
+      }
+      if (enabled && d.sp_torque_valid) {
+        limited = limited || mrqp_fw_arm_torque_to_permille(&d.cfg.scale, d.sp_torque, &torque_permille) !=
+                                 MRQP_FW_CONV_OK;
+      }
+      mrqp_fw_frame f;
+      const mrqp_fw_arm_rpdo1 raw{cw, position_inc, torque_permille};
+      const mrqp_fw_pack_flags pf = mrqp_fw_arm_pack_rpdo1(d.cfg.node, &raw, &f);
+      if (mrqp_fw_pack_failed(pf)) {
+        continue;  // cannot happen: node validated at construction
+      }
+      if (limited) {
+        ++d.faults.limited_setpoints;
+        d.events |= fault::kSetpointLimited;
+      }
+      d.state.controlword = cw;
+      if (send(s, &d, f)) {
+        ++count;
+      }
+    }
+    if (config_.produce_sync) {
+      mrqp_fw_frame f;
+      slot.sync.process(now, &f);
+      if (send(s, nullptr, f)) {
+        ++count;
+        if (!routers_.router(s).bus().echoes_own()) {
+          slot.jitter.on_sync(now);  // no echo: the time handed to transmit()
+        }
+      }
+    }
+    // Feedback is expected from now on, even if the SYNC could not be queued (a
+    // full queue then shows up as missing feedback, not as silence).
+    slot.cyclic_sent = true;
   }
   return count;
 }
@@ -458,6 +542,15 @@ Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept {
       ++d.faults.corrupt_frames;
       fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
       return Claim::Rejected;
+    case SdoWriteSequence::Step::Mismatch:
+      d.faults.sdo_check_failed = true;
+      d.faults.sdo_check_expected = d.sdo.current().value;
+      d.faults.sdo_check_actual = d.sdo.read_value();
+      d.faults.sdo_check_mask = d.sdo.current().mask;
+      d.faults.sdo_index = d.sdo.current().index;
+      d.faults.sdo_subindex = d.sdo.current().subindex;
+      fail_boot(d, fault::kBootFailed);
+      return Claim::Accepted;
     case SdoWriteSequence::Step::Idle:
     case SdoWriteSequence::Step::Unexpected:
       break;
@@ -517,10 +610,16 @@ void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept {
   d.last_claim = Claim::Accepted;
 }
 
-void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs) noexcept {
+void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
   const int slot = routers_.slot_of(from);
-  if (slot < 0 || phase_ != ArmPhase::Resetting || rx.frame.id != MRQP_FW_COB_NMT ||
-      (rx.frame.flags & MRQP_FW_FRAME_EXT) != 0u) {
+  if (slot < 0 || (rx.frame.flags & MRQP_FW_FRAME_EXT) != 0u) {
+    return;
+  }
+  if (rx.frame.id == MRQP_FW_COB_SYNC) {
+    buses_[static_cast<std::size_t>(slot)].jitter.on_sync(detail::rx_time(rx, now));
+    return;
+  }
+  if (phase_ != ArmPhase::Resetting || rx.frame.id != MRQP_FW_COB_NMT) {
     return;
   }
   for (Drive& d : drives_) {
@@ -559,6 +658,14 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
       if (st == MRQP_FW_NMT_STATE_BOOTUP) {
         if (phase_ == ArmPhase::Resetting) {
           (void)d.nmt.on_boot_up(t);
+        } else if (phase_ == ArmPhase::Running) {
+          d.events |= fault::kStateMismatch;  // the drive rebooted on its own: its
+                                              // configuration is lost
+          d.rebooted = true;
+          d.recovery = Drive::Recovery::None;  // a recovery under way starts again
+                                               // from the top
+          d.faults.emcy_code = 0;              // a reboot clears the drive's errors
+          d.faults.emcy_register = 0;
         } else if (phase_ != ArmPhase::Idle && phase_ != ArmPhase::Failed) {
           d.events |= fault::kStateMismatch;  // the drive rebooted on its own
         }

@@ -12,17 +12,41 @@ namespace mrqp::drivers {
 std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const {
   const unsigned n = drive.node;
   std::vector<SdoWrite> writes;
-  auto w = [&writes](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value) {
-    writes.push_back(SdoWrite{index, sub, size, value});
+  auto w = [&writes](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value,
+                     SdoAccess access = SdoAccess::Write) {
+    writes.push_back(SdoWrite{index, sub, size, value, access, 0xFFFFFFFFu});
+  };
+  auto check = [&writes](std::uint16_t index, std::uint8_t sub, std::uint32_t value, std::uint32_t mask) {
+    writes.push_back(SdoWrite{index, sub, 4, value, SdoAccess::ReadCheck, mask});
   };
   constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
+  // COB-ID bit 30 of a TPDO: 1 = no RTR allowed (many drives refuse RTR-capable PDOs).
+  const std::uint32_t no_rtr = config_.tpdo_rtr_allowed ? 0u : 0x40000000u;
+  // A write that disables a PDO the drive may not have: abort 0x06020000 satisfies it too.
+  const SdoAccess disable_access =
+      config_.tolerate_absent_pdos ? SdoAccess::WriteUnlessAbsent : SdoAccess::Write;
+  // Identity first: a wrong device is not configured at all.
+  if (drive.device_type != 0u) {
+    check(MRQP_FW_OBJ_DEVICE_TYPE, 0, drive.device_type, drive.device_type_mask);
+  }
+  if (drive.vendor_id != 0u) {
+    check(MRQP_FW_OBJ_IDENTITY, 1, drive.vendor_id, 0xFFFFFFFFu);
+  }
+  if (drive.product_code != 0u) {
+    check(MRQP_FW_OBJ_IDENTITY, 2, drive.product_code, 0xFFFFFFFFu);
+  }
+  if (drive.revision != 0u) {
+    check(MRQP_FW_OBJ_IDENTITY, 3, drive.revision, 0xFFFFFFFFu);
+  }
   w(MRQP_FW_OBJ_PRODUCER_HEARTBEAT, 0, 2, config_.producer_heartbeat_ms);
   if (config_.master_node != 0u) {
     w(MRQP_FW_OBJ_CONSUMER_HEARTBEAT, 1, 4,
       (static_cast<std::uint32_t>(config_.master_node) << 16) | config_.drive_consumer_ms);
   }
   if (config_.write_cycle_period) {
-    w(MRQP_FW_OBJ_COMM_CYCLE_PERIOD, 0, 4, static_cast<std::uint32_t>(config_.cycle_period / 1000));
+    w(MRQP_FW_OBJ_COMM_CYCLE_PERIOD, 0, 4,
+      config_.comm_cycle_period_us != 0u ? config_.comm_cycle_period_us
+                                         : static_cast<std::uint32_t>(config_.cycle_period / 1000));
   }
   struct Pdo {
     std::uint16_t comm;
@@ -30,23 +54,26 @@ std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
     std::uint32_t cob;
     mrqp_fw_arm_pdo which;
     bool enable;
+    bool tpdo;
   };
   const Pdo pdos[] = {
-      {MRQP_FW_OBJ_RPDO_COMM_BASE, MRQP_FW_OBJ_RPDO_MAP_BASE, mrqp_fw_cob_rpdo(1, n), MRQP_FW_ARM_RPDO1,
-       true},
-      {MRQP_FW_OBJ_TPDO_COMM_BASE, MRQP_FW_OBJ_TPDO_MAP_BASE, mrqp_fw_cob_tpdo(1, n), MRQP_FW_ARM_TPDO1,
+      {MRQP_FW_OBJ_RPDO_COMM_BASE, MRQP_FW_OBJ_RPDO_MAP_BASE, mrqp_fw_cob_rpdo(1, n), MRQP_FW_ARM_RPDO1, true,
+       false},
+      {MRQP_FW_OBJ_TPDO_COMM_BASE, MRQP_FW_OBJ_TPDO_MAP_BASE, mrqp_fw_cob_tpdo(1, n), MRQP_FW_ARM_TPDO1, true,
        true},
       {static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 1u),
        static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_MAP_BASE + 1u), mrqp_fw_cob_tpdo(2, n), MRQP_FW_ARM_TPDO2,
-       config_.tpdo2},
+       config_.tpdo2, true},
   };
   for (const Pdo& p : pdos) {
     // CiA 301 order: disable the PDO, set the transmission type, clear the mapping, write the
     // entries, set the entry count, enable the PDO.
-    w(p.comm, 1, 4, kPdoInvalid | p.cob);
+    const std::uint32_t cob = p.cob | (p.tpdo ? no_rtr : 0u);
     if (!p.enable) {
+      w(p.comm, 1, 4, kPdoInvalid | cob, disable_access);
       continue;
     }
+    w(p.comm, 1, 4, kPdoInvalid | cob);
     w(p.comm, 2, 1, MRQP_FW_PDO_TRANSMISSION_SYNC);
     w(p.map, 0, 1, 0);
     std::uint32_t entries[4] = {0, 0, 0, 0};
@@ -55,11 +82,13 @@ std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const
       w(p.map, static_cast<std::uint8_t>(k + 1u), 4, entries[k]);
     }
     w(p.map, 0, 1, count);
-    w(p.comm, 1, 4, p.cob);
+    w(p.comm, 1, 4, cob);
   }
   // TPDO3 and TPDO4 would load the bus with frames nobody reads.
-  w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 2u), 1, 4, kPdoInvalid | mrqp_fw_cob_tpdo(3, n));
-  w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 3u), 1, 4, kPdoInvalid | mrqp_fw_cob_tpdo(4, n));
+  w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 2u), 1, 4,
+    kPdoInvalid | no_rtr | mrqp_fw_cob_tpdo(3, n), disable_access);
+  w(static_cast<std::uint16_t>(MRQP_FW_OBJ_TPDO_COMM_BASE + 3u), 1, 4,
+    kPdoInvalid | no_rtr | mrqp_fw_cob_tpdo(4, n), disable_access);
   w(MRQP_FW_OBJ_MODES_OF_OPERATION, 0, 1, static_cast<std::uint8_t>(drive.mode));
   return writes;
 }
@@ -107,8 +136,12 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
       return fail("drive_consumer_ms must be longer than master_heartbeat_ms (> 0)");
     }
   }
-  if (config.boot_timeout <= 0 || config.sdo_timeout <= 0 || config.enable_timeout <= 0) {
+  if (config.boot_timeout <= 0 || config.sdo_timeout <= 0 || config.enable_timeout <= 0 ||
+      config.exit_timeout <= 0 || config.recovery_retry <= 0) {
     return fail("timeouts must be > 0");
+  }
+  if (!(config.sync_timeout_factor >= 1.0) || !std::isfinite(config.sync_timeout_factor)) {
+    return fail("sync_timeout_factor must be a finite number >= 1");
   }
   std::vector<std::vector<bool>> used(buses.size(), std::vector<bool>(128, false));
   for (std::size_t i = 0; i < config.drives.size(); ++i) {
@@ -148,6 +181,7 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
   for (BusSlot& b : p->buses_) {
     b.node_to_drive.fill(-1);
     b.sync.init(config.sync_counter_overflow);
+    b.jitter.init(config.cycle_period, config.sync_timeout_factor);
   }
   p->master_heartbeat_.init(config.master_node, config.master_heartbeat_ms);
   p->drives_.resize(config.drives.size());
@@ -160,6 +194,7 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
     d.nmt.set_echo(buses[d.cfg.bus]->bus().echoes_own());
     d.sdo.init(d.cfg.node, p->build_writes(d.cfg), config.sdo_timeout);
     d.heartbeat.init(config.producer_heartbeat_ms > 0u, config.heartbeat_timeout);
+    d.faults.node = d.cfg.node;
   }
   if (const std::string why = p->routers_.attach(buses, *p, p->drives_.size()); !why.empty()) {
     return fail(why);

@@ -1,6 +1,8 @@
 // mrqp drivers -- fault names (real time) and descriptions (allocate: logs only).
 #include "mrqp/drivers/faults.hpp"
 
+#include "mrqp/drivers/canopen/canopen_text.hpp"
+
 namespace mrqp::drivers {
 
 const char* fault_flag_name(std::uint32_t flag) noexcept {
@@ -45,6 +47,8 @@ const char* fault_flag_name(std::uint32_t flag) noexcept {
       return "sample lost";
     case fault::kDeviceWarning:
       return "device warning";
+    case fault::kRecovering:
+      return "recovering";
     default:
       return "unknown";
   }
@@ -63,6 +67,30 @@ std::string fault_flags_str(std::uint32_t flags) {
   return out;
 }
 
+std::string describe_device_faults(const DeviceFaults& d) {
+  std::string out = fault_flags_str(d.flags);
+  if (d.node != 0u) {
+    out += " (node " + std::to_string(d.node) + ")";
+  }
+  if ((d.flags & fault::kEmcy) != 0u) {
+    out += "; " + describe_emcy(d.emcy_code, d.emcy_register, d.node);
+  }
+  if ((d.flags & fault::kFeedbackMissing) != 0u) {
+    out += "; no feedback for " + std::to_string(d.missed_cycles) + " cycles";
+  }
+  if ((d.flags & fault::kStateMismatch) != 0u && d.node != 0u) {
+    out += "; NMT state " + std::string(nmt_state_str(d.nmt_state));
+  }
+  if (d.sdo_abort_code != 0u) {
+    out += "; " + describe_sdo_abort(d.sdo_abort_code, d.sdo_index, d.sdo_subindex, d.node);
+  }
+  if (d.sdo_check_failed) {
+    out += "; " + describe_check_mismatch(d.sdo_index, d.sdo_subindex, d.node, d.sdo_check_expected,
+                                          d.sdo_check_actual, d.sdo_check_mask);
+  }
+  return out;
+}
+
 std::string describe_faults(const FaultReport& report, const char* what) {
   std::string out;
   for (std::size_t i = 0; i < report.device_count; ++i) {
@@ -70,24 +98,7 @@ std::string describe_faults(const FaultReport& report, const char* what) {
     if (d.flags == 0u) {
       continue;
     }
-    out += std::string(what) + " " + std::to_string(i) + ": " + fault_flags_str(d.flags);
-    if ((d.flags & fault::kEmcy) != 0u) {
-      char code[8];
-      static const char* hex = "0123456789ABCDEF";
-      code[0] = '0';
-      code[1] = 'x';
-      for (int k = 0; k < 4; ++k) {
-        code[2 + k] = hex[(d.emcy_code >> (12 - 4 * k)) & 0xFu];
-      }
-      code[6] = '\0';
-      out += " (EMCY code ";
-      out += code;
-      out += ")";
-    }
-    if ((d.flags & fault::kFeedbackMissing) != 0u) {
-      out += " (" + std::to_string(d.missed_cycles) + " cycles)";
-    }
-    out += "\n";
+    out += std::string(what) + " " + std::to_string(i) + ": " + describe_device_faults(d) + "\n";
   }
   for (std::size_t i = 0; i < report.bus_count; ++i) {
     const BusFaults& b = report.buses[i];

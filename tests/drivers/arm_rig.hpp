@@ -19,9 +19,11 @@ namespace drvtest {
 struct ArmRig {
   /// drives[i] = {bus, node}. The master is node 0 of every bus; with `echo_own` it receives its
   /// own frames (TX echo). `boot_delay`: the fake drives' power-on / reset -> boot-up time.
+  /// `profile`: how strict the fake drives are (vendor_profile.hpp).
   ArmRig(const std::vector<std::pair<std::size_t, std::uint8_t>>& drives, mrqp::drivers::ArmConfig cfg,
          std::size_t master_tx_queue = 64, std::vector<std::int32_t> initial_positions = {},
-         bool echo_own = false, mrqp::drivers::TimeNs boot_delay = 2000000) {
+         bool echo_own = false, mrqp::drivers::TimeNs boot_delay = 2000000,
+         const mrqp::emulation::VendorProfile& profile = mrqp::emulation::VendorProfile::lenient()) {
     using namespace mrqp::drivers;
     std::size_t nbus = 1;
     for (const auto& d : drives) {
@@ -44,6 +46,7 @@ struct ArmRig {
       o.node = drives[i].second;
       o.initial_position = i < initial_positions.size() ? initial_positions[i] : 0;
       o.boot_delay = boot_delay;
+      o.profile = profile;
       SimNodeConfig nc;
       nc.name = "drive";
       fakes.push_back(std::make_unique<FakeCia402Drive>(*buses[drives[i].first]->add_node(nc), o));

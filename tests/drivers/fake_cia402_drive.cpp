@@ -11,6 +11,7 @@ mrqp::emulation::EmulatedCia402Drive::Options drive_options(const FakeDriveOptio
   d.node = o.node;
   d.boot_delay = o.boot_delay;
   d.response_delay = o.response_delay;
+  d.profile = o.profile;
   return d;
 }
 }  // namespace

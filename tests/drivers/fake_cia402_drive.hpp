@@ -24,6 +24,7 @@ struct FakeDriveOptions {
   TimeNs response_delay = 20000;  ///< SDO answer / TPDO after SYNC (20 us)
   std::int32_t initial_position = 0;
   mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
+  mrqp::emulation::VendorProfile profile = mrqp::emulation::VendorProfile::lenient();
 };
 
 class FakeCia402Drive final : public mrqp::drivers::SimListener,
@@ -67,6 +68,8 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener,
   bool tpdo1_configured() const noexcept { return drive_.tpdo1_configured(); }
   bool tpdo2_configured() const noexcept { return drive_.tpdo2_configured(); }
   bool rpdo1_configured() const noexcept { return drive_.rpdo1_configured(); }
+  unsigned comm_errors() const noexcept { return drive_.comm_errors(); }
+  bool comm_error_active() const noexcept { return drive_.comm_error_active(); }
 
  private:
   using Drive = mrqp::emulation::EmulatedCia402Drive;

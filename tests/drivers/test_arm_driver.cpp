@@ -44,7 +44,8 @@ struct Write {
 
 // The boot configuration of node n (period 1 ms, heartbeat 100 ms, TPDO2 on, CSP), by hand:
 // CiA 301 PDO procedure (disable, transmission type, clear mapping, entries, count, enable),
-// mapping entries = index << 16 | sub << 8 | bits (docs/protocol.md).
+// mapping entries = index << 16 | sub << 8 | bits (docs/protocol.md); TPDO COB-IDs with bit 31
+// (0x80000000: disabled) while configured and bit 30 (0x40000000: no RTR) always.
 std::vector<Write> boot_writes(unsigned n, bool consumer = false) {
   std::vector<Write> w = {{0x1017, 0, 2, 100}};
   if (consumer) {
@@ -60,24 +61,24 @@ std::vector<Write> boot_writes(unsigned n, bool consumer = false) {
       {0x1600, 3, 4, 0x60710010u},
       {0x1600, 0, 1, 3},
       {0x1400, 1, 4, 0x200u + n},
-      {0x1800, 1, 4, 0x80000180u + n},
+      {0x1800, 1, 4, 0xC0000180u + n},
       {0x1800, 2, 1, 1},
       {0x1A00, 0, 1, 0},
       {0x1A00, 1, 4, 0x60410010u},
       {0x1A00, 2, 4, 0x60640020u},
       {0x1A00, 3, 4, 0x60770010u},
       {0x1A00, 0, 1, 3},
-      {0x1800, 1, 4, 0x180u + n},
-      {0x1801, 1, 4, 0x80000280u + n},
+      {0x1800, 1, 4, 0x40000180u + n},
+      {0x1801, 1, 4, 0xC0000280u + n},
       {0x1801, 2, 1, 1},
       {0x1A01, 0, 1, 0},
       {0x1A01, 1, 4, 0x606C0020u},
       {0x1A01, 2, 4, 0x603F0010u},
       {0x1A01, 3, 4, 0x60610008u},
       {0x1A01, 0, 1, 3},
-      {0x1801, 1, 4, 0x280u + n},
-      {0x1802, 1, 4, 0x80000380u + n},
-      {0x1803, 1, 4, 0x80000480u + n},
+      {0x1801, 1, 4, 0x40000280u + n},
+      {0x1802, 1, 4, 0xC0000380u + n},
+      {0x1803, 1, 4, 0xC0000480u + n},
       {0x6060, 0, 1, 8},
   };
   w.insert(w.end(), rest.begin(), rest.end());
@@ -391,7 +392,9 @@ TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled
   CHECK(r1.devices[1].emcy_count == 1u);
   CHECK(r1.devices[0].flags == 0u);
   CHECK_THAT(describe_faults(r1), Catch::Matchers::Contains("device 1: EMCY"));
-  CHECK_THAT(describe_faults(r1), Catch::Matchers::Contains("(EMCY code 0x2310)"));
+  CHECK_THAT(describe_faults(r1),
+             Catch::Matchers::Contains("EMCY 0x2310 (" + std::string(mrqp_fw_emcy_code_str(0x2310)) +
+                                       ") register 0x03 from node 2"));
   // Fault reaction active, then Fault: reported as a device fault and not reset automatically.
   for (int k = 0; k < 5; ++k) {
     rig.cycle();

@@ -64,6 +64,7 @@ void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
 
 ArmConfig base_config() {
   ArmConfig c;
+  c.tpdo_rtr_allowed = true;  // the recording predates TPDO COB-IDs with bit 30 (no RTR)
   c.cycle_period = milliseconds(1);
   return c;
 }

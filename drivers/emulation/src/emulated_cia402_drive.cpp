@@ -10,6 +10,8 @@ namespace mrqp::emulation {
 
 namespace {
 constexpr std::uint32_t kPdoInvalid = 0x80000000u;  // COB-ID bit 31: PDO does not exist / disabled
+constexpr std::uint32_t kNoRtr = 0x40000000u;       // COB-ID bit 30: no RTR allowed
+constexpr std::uint32_t kAckIgnore = 1u;            // not an abort code: acknowledge, store nothing
 
 TimeNs ms(std::uint32_t v) noexcept { return static_cast<TimeNs>(v) * 1000000; }
 }  // namespace
@@ -36,9 +38,9 @@ EmulatedCia402Drive::EmulatedCia402Drive(Host& host, const Options& options) noe
 void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
   const std::uint32_t n = options_.node;
   const Entry comm[] = {
-      {0x1000, 0, 4, false, 0x00020192u},  // device type: CiA 402 drive
-      {0x1006, 0, 4, true, 0},             // communication cycle period
-      {0x1016, 0, 1, false, 1},            // consumer heartbeat: one entry
+      {0x1000, 0, 4, false, options_.profile.device_type},  // device type: CiA 402 drive
+      {0x1006, 0, 4, true, 0},                              // communication cycle period
+      {0x1016, 0, 1, false, 1},                             // consumer heartbeat: one entry
       {0x1016, 1, 4, true, 0},
       {0x1017, 0, 2, true, 0},           // producer heartbeat time
       {0x1400, 1, 4, true, 0x200u + n},  // RPDO1: valid by default...
@@ -66,6 +68,13 @@ void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
       {0x1A01, 2, 4, true, 0},
       {0x1A01, 3, 4, true, 0},
       {0x1A01, 4, 4, true, 0},
+      {0x1018, 0, 1, false, 4},  // identity
+      {0x1018, 1, 4, false, options_.profile.vendor_id},
+      {0x1018, 2, 4, false, options_.profile.product_code},
+      {0x1018, 3, 4, false, options_.profile.revision},
+      {0x1018, 4, 4, false, options_.profile.serial},
+      {0x1029, 0, 1, false, 1},  // error behaviour: communication error
+      {0x1029, 1, 1, true, options_.profile.comm_error_behaviour},
   };
   const Entry app[] = {
       {0x6060, 0, 1, true, 0},
@@ -75,7 +84,9 @@ void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
   if (!communication_only) {
     od_count_ = 0;
     for (const Entry& e : comm) {
-      od_[od_count_++] = e;
+      if (present(e.index)) {
+        od_[od_count_++] = e;
+      }
     }
     for (const Entry& e : app) {
       od_[od_count_++] = e;
@@ -88,6 +99,18 @@ void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
       *cur = e;
     }
   }
+}
+
+bool EmulatedCia402Drive::present(std::uint16_t index) const noexcept {
+  // TPDO n (communication 0x1800 + n - 1, mapping 0x1A00 + n - 1) exists for n <= tpdo_count.
+  const unsigned count = options_.profile.tpdo_count;
+  if (index >= 0x1800u && index <= 0x1803u) {
+    return index - 0x1800u < count;
+  }
+  if (index >= 0x1A00u && index <= 0x1A03u) {
+    return index - 0x1A00u < count;
+  }
+  return true;
 }
 
 EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index, std::uint8_t sub) noexcept {
@@ -134,7 +157,9 @@ bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_
 
 bool EmulatedCia402Drive::pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob,
                                  mrqp_fw_arm_pdo which) const noexcept {
-  if (od_value(comm, 1) != cob || od_value(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
+  std::uint32_t comm_cob = 0;
+  if (!od(comm, 1, &comm_cob) || (comm_cob & ~kNoRtr) != cob ||
+      od_value(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
     return false;
   }
   std::uint32_t entries[4] = {0, 0, 0, 0};
@@ -160,8 +185,70 @@ bool EmulatedCia402Drive::tpdo2_configured() const noexcept {
   return pdo_ok(0x1801, 0x1A01, MRQP_FW_COB_TPDO2_BASE + options_.node, MRQP_FW_ARM_TPDO2);
 }
 
+TimeNs EmulatedCia402Drive::sync_deadline() const noexcept {
+  const std::uint32_t period_us = od_value(0x1006, 0);
+  if (options_.profile.sync_timeout_factor <= 0.0 || nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL ||
+      last_sync_ == kNever || period_us == 0u) {
+    return kNever;
+  }
+  return last_sync_ +
+         static_cast<TimeNs>(options_.profile.sync_timeout_factor * static_cast<double>(period_us) * 1000.0);
+}
+
 TimeNs EmulatedCia402Drive::next_event() const noexcept {
-  return boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
+  TimeNs t = boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
+  const TimeNs sync = sync_deadline();
+  if (sync != kNever && sync + 1 < t) {
+    t = sync + 1;  // the timeout is a gap longer than the deadline
+  }
+  return t;
+}
+
+void EmulatedCia402Drive::comm_error(TimeNs now) noexcept {
+  // CiA 301: EMCY 0x8100 (communication), error register generic | communication, then the
+  // behaviour of 0x1029:01: 0 pre-operational (from Operational), 1 no change, 2 stopped.
+  last_sync_ = kNever;
+  comm_error_active_ = true;
+  ++comm_errors_;
+  if (options_.profile.comm_error_fault) {
+    state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT, nullptr);
+    error_code_ = MRQP_FW_EMCY_COMMUNICATION;
+  }
+  mrqp_fw_emcy e{};
+  e.error_code = MRQP_FW_EMCY_COMMUNICATION;
+  e.error_register = MRQP_FW_ERRREG_GENERIC | MRQP_FW_ERRREG_COMMUNICATION;
+  mrqp_fw_frame f;
+  if (!mrqp_fw_pack_failed(mrqp_fw_emcy_pack(options_.node, &e, &f))) {
+    send(f, now, false);
+  }
+  const std::uint32_t behaviour = od_value(0x1029, 1);
+  if (behaviour == 0u && nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL) {
+    nmt_ = MRQP_FW_NMT_STATE_PRE_OPERATIONAL;
+  } else if (behaviour == 2u) {
+    nmt_ = MRQP_FW_NMT_STATE_STOPPED;
+  }
+}
+
+std::uint16_t EmulatedCia402Drive::other_status_bits() const noexcept {
+  if (!options_.profile.statusword_bits) {
+    return MRQP_FW_SW_VOLTAGE_ENABLED;
+  }
+  std::uint16_t bits = 0;
+  switch (state_) {
+    case MRQP_FW_CIA402_READY_TO_SWITCH_ON:
+    case MRQP_FW_CIA402_SWITCHED_ON:
+    case MRQP_FW_CIA402_OPERATION_ENABLED:
+    case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
+    case MRQP_FW_CIA402_FAULT_REACTION_ACTIVE:
+      bits |= MRQP_FW_SW_VOLTAGE_ENABLED;
+      break;
+    default:
+      break;
+  }
+  if (nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL) {
+    bits |= MRQP_FW_SW_REMOTE;
+  }
+  return bits;
 }
 
 void EmulatedCia402Drive::power_on(TimeNs now) noexcept {
@@ -170,6 +257,11 @@ void EmulatedCia402Drive::power_on(TimeNs now) noexcept {
   reset_od(false);
   heartbeat_due_ = kNever;
   boot_at_ = now + options_.boot_delay;
+  last_sync_ = kNever;
+  comm_error_active_ = false;
+  error_code_ = 0;
+  controlword_ = 0;
+  rpdo_pending_ = false;
 }
 
 void EmulatedCia402Drive::abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
@@ -191,6 +283,10 @@ void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_reg
 }
 
 void EmulatedCia402Drive::advance(TimeNs now) noexcept {
+  const TimeNs sync = sync_deadline();
+  if (sync != kNever && now > sync) {
+    comm_error(now);
+  }
   if (boot_at_ <= now) {
     // End of initialisation: boot-up message, then pre-operational.
     boot_at_ = kNever;
@@ -270,20 +366,26 @@ void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
     nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
     heartbeat_due_ = kNever;
     boot_at_ = now + options_.boot_delay;
+    last_sync_ = kNever;
+    comm_error_active_ = false;
     host_.on_nmt_reset(application);
     return;
+  }
+  if (next != MRQP_FW_NMT_STATE_OPERATIONAL) {
+    last_sync_ = kNever;  // SYNC is watched in Operational only
   }
   nmt_ = next;
 }
 
 std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) const noexcept {
+  const VendorProfile& p = options_.profile;
   if (!e.writable) {
-    return MRQP_FW_SDO_ABORT_READ_ONLY;
+    return p.abort_read_only ? MRQP_FW_SDO_ABORT_READ_ONLY : kAckIgnore;
   }
   const std::uint16_t i = e.index;
   const bool is_map = (i >= 0x1600 && i <= 0x1603) || (i >= 0x1A00 && i <= 0x1A03);
   const bool is_comm = (i >= 0x1400 && i <= 0x1403) || (i >= 0x1800 && i <= 0x1803);
-  if (is_map) {
+  if (p.pdo_rules && is_map) {
     const std::uint16_t comm = static_cast<std::uint16_t>(i - 0x200u);
     if ((od_value(comm, 1) & kPdoInvalid) == 0u) {
       return MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE;  // mapping changes only while the PDO is disabled
@@ -311,8 +413,25 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
   if (is_comm && e.sub == 1) {
     const bool now_valid = (od_value(i, 1) & kPdoInvalid) == 0u;
     const bool to_valid = (v & kPdoInvalid) == 0u;
-    if (now_valid && to_valid && v != od_value(i, 1)) {
+    if (p.pdo_rules && now_valid && to_valid && v != od_value(i, 1)) {
       return MRQP_FW_SDO_ABORT_INVALID_VALUE;  // change the COB-ID only while disabled
+    }
+    if (p.rtr_check && i >= 0x1800u && to_valid && (v & kNoRtr) == 0u) {
+      return MRQP_FW_SDO_ABORT_INVALID_VALUE;  // this drive has no RTR-capable TPDOs
+    }
+  }
+  if (p.range_checks) {
+    if (is_comm && e.sub == 2 && v >= 0xF1u && v <= 0xFBu) {
+      return MRQP_FW_SDO_ABORT_INVALID_VALUE;  // reserved transmission types
+    }
+    if (i == 0x1006 && v != 0u && v < p.min_cycle_us) {
+      return MRQP_FW_SDO_ABORT_VALUE_LOW;
+    }
+    if (i == 0x1017 && v != 0u && v < p.min_heartbeat_ms) {
+      return MRQP_FW_SDO_ABORT_VALUE_LOW;
+    }
+    if (i == 0x1029 && v > 2u) {
+      return MRQP_FW_SDO_ABORT_VALUE_HIGH;
     }
   }
   if (i == 0x6060 && v != static_cast<std::uint32_t>(MRQP_FW_MODE_CSP) &&
@@ -342,7 +461,9 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
     if (!m.expedited) {
       abort = MRQP_FW_SDO_ABORT_COMMAND;  // segmented writes are not needed by this drive
     } else if (e == nullptr) {
-      abort = object_exists(m.index) ? MRQP_FW_SDO_ABORT_NO_SUBINDEX : MRQP_FW_SDO_ABORT_NO_OBJECT;
+      abort = !options_.profile.abort_absent ? kAckIgnore
+              : object_exists(m.index)       ? MRQP_FW_SDO_ABORT_NO_SUBINDEX
+                                             : MRQP_FW_SDO_ABORT_NO_OBJECT;
     } else if (m.n != e->size) {
       abort = MRQP_FW_SDO_ABORT_TYPE_LENGTH;
     } else if (abort_code_ != 0u && m.index == abort_index_ && m.subindex == abort_sub_) {
@@ -350,7 +471,10 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
     } else {
       abort = check_write(*e, v);
     }
-    if (abort == 0u) {
+    if (abort == kAckIgnore) {
+      abort = 0;
+      (void)mrqp_fw_sdo_pack_download_resp(options_.node, m.index, m.subindex, &out);
+    } else if (abort == 0u) {
       e->value = v;
       if (m.index == 0x6060) {
         find(0x6061, 0)->value = v;  // mode display follows
@@ -382,6 +506,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
 void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
   const TimeNs at = now + options_.response_delay;
   ++syncs_;
+  last_sync_ = now;
   // Fault reaction completes at the next SYNC.
   state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT_REACTION_DONE, nullptr);
   const bool new_targets = rpdo_pending_;
@@ -394,11 +519,21 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
     target_torque_ = rpdo_torque_;
     if (before == MRQP_FW_CIA402_FAULT && state_ != MRQP_FW_CIA402_FAULT) {
       error_code_ = 0;
+      comm_error_active_ = false;
       mrqp_fw_emcy e{};
       mrqp_fw_frame f;
       (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset
       send(f, at, false);
     }
+  }
+  if (comm_error_active_ && state_ != MRQP_FW_CIA402_FAULT &&
+      state_ != MRQP_FW_CIA402_FAULT_REACTION_ACTIVE) {
+    // SYNC is back and the power stage never faulted: the communication error is over.
+    comm_error_active_ = false;
+    mrqp_fw_emcy e{};
+    mrqp_fw_frame f;
+    (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset
+    send(f, at, false);
   }
   const Feedback fb = host_.on_sync(*this, new_targets, now);
   if (pdo_silent_) {
@@ -406,8 +541,7 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
   }
   mrqp_fw_frame f;
   if (tpdo1_configured()) {
-    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, MRQP_FW_SW_VOLTAGE_ENABLED), fb.position,
-                              fb.torque};
+    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, other_status_bits()), fb.position, fb.torque};
     (void)mrqp_fw_arm_pack_tpdo1(options_.node, &t, &f);
     send(f, at, true);
   }

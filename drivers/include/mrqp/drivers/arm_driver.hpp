@@ -13,6 +13,11 @@
 //                             (when the master sends a heartbeat), communication cycle 0x1006,
 //                             RPDO1/TPDO1/TPDO2 mapping (disable, transmission type 1, map, enable),
 //                             TPDO3/TPDO4 disabled, modes of operation 0x6060 (CSP 8 / CST 10).
+//                             Optionally first reads device type 0x1000 and identity 0x1018:1..3
+//                             and checks them against the drive's configuration. TPDO COB-IDs are
+//                             written with bit 30 = 1 (no RTR) unless tpdo_rtr_allowed; a write that
+//                             disables a PDO is satisfied by abort 0x06020000 (the drive has fewer
+//                             PDOs: CiA 301 leaves their number to the device).
 //                Starting     NMT start per drive.
 //                Running      every cycle, per bus: one RPDO1 per drive (controlword, target
 //                             position, target torque) and then one SYNC. TPDO1 (statusword,
@@ -22,6 +27,22 @@
 //   follows mrqp_fw_cia402_master_controlword (firmware_if), one transition per cycle, until the
 //   target state is reported by the statusword. A drive that falls into Fault is flagged and
 //   left there (target Switch on disabled) until the next request_enable(), which resets it.
+//
+// Recovery (see docs/drivers.md, "Bringing up a vendor's drive"): a drive that leaves
+// Operational (its heartbeat reports pre-operational or stopped), reboots (boot-up message) or
+// falls into Fault while enabled is flagged (kStateMismatch with the NMT state, kEmcy with the
+// code) and needs recovery: reconfigure if it rebooted, NMT start, CiA 402 enable (fault reset).
+// request_recovery(now) starts it for every drive that needs it; with ArmConfig::recovery =
+// Automatic the driver starts it by itself. Neither happens while set_safe_state(true) is in force:
+// the loop sets it while its safe state holds, and the driver then recovers nothing.
+//
+// Safe exit: request_safe_exit(now) stops every drive (quick stop, or disable voltage, as
+// ArmConfig::exit_stop), waits until each reports it (or exit_timeout), then sends NMT enter
+// pre-operational or stop (exit_nmt) to each drive; safe_exit_done() then holds (phase Stopped,
+// no cyclic traffic). Works from any phase (a failed boot goes straight to the NMT command).
+//
+// SYNC jitter: the interval between successive SYNCs of each bus, timed on the TX echo where the
+// bus returns the master's own frames (else at transmit()), against the cycle period: sync_stats().
 //
 // The control cycle calls, in order: BusRouter::poll(now) for each bus, update(now) (faults and
 // state machine), set_position()/set_torque(), transmit(now).
@@ -52,6 +73,7 @@
 #include "mrqp/drivers/canopen/heartbeat_producer.hpp"
 #include "mrqp/drivers/canopen/nmt_boot.hpp"
 #include "mrqp/drivers/canopen/sdo_write_sequence.hpp"
+#include "mrqp/drivers/canopen/sync_jitter.hpp"
 #include "mrqp/drivers/canopen/sync_producer.hpp"
 #include "mrqp/drivers/device.hpp"
 #include "mrqp/drivers/faults.hpp"
@@ -73,7 +95,22 @@ struct ArmDriveConfig {
   double position_max = std::numeric_limits<double>::infinity();    ///< rad
   double torque_limit = std::numeric_limits<double>::infinity();    ///< N m, absolute
   double velocity_limit = std::numeric_limits<double>::infinity();  ///< rad/s, feedback check only
+  /// Checked at boot (read before the configuration) when non-zero: device type 0x1000 (bits of
+  /// device_type_mask; default the profile number, 402 = 0x0192, in the low 16 bits), vendor id
+  /// 0x1018:1, product code 0x1018:2, revision 0x1018:3. A mismatch fails the boot.
+  std::uint32_t device_type = 0;
+  std::uint32_t device_type_mask = 0x0000FFFFu;
+  std::uint32_t vendor_id = 0;
+  std::uint32_t product_code = 0;
+  std::uint32_t revision = 0;
 };
+
+/// Who starts a recovery (see ArmDriver): the caller (request_recovery) or the driver itself.
+enum class RecoveryPolicy : std::uint8_t { Manual = 0, Automatic };
+/// How request_safe_exit() stops the power stage.
+enum class ExitStop : std::uint8_t { QuickStop = 0, DisableVoltage };
+/// The NMT state request_safe_exit() leaves the drives in.
+enum class ExitNmt : std::uint8_t { PreOperational = 0, Stopped, Unchanged };
 
 struct ArmConfig {
   std::vector<ArmDriveConfig> drives;
@@ -86,15 +123,41 @@ struct ArmConfig {
   TimeNs heartbeat_timeout = milliseconds(250);  ///< consumer time of the master
   std::uint8_t master_node = 0;                  ///< != 0: send a master heartbeat as this node id
   std::uint16_t master_heartbeat_ms = 100;
-  std::uint16_t drive_consumer_ms = 300;      ///< written to 0x1016:1 when master_node != 0
-  bool write_cycle_period = true;             ///< write 0x1006 = cycle period in microseconds
+  std::uint16_t drive_consumer_ms = 300;  ///< written to 0x1016:1 when master_node != 0
+  bool write_cycle_period = true;         ///< write 0x1006 (microseconds)
+  /// The value written to 0x1006 in microseconds; 0: the cycle period. A drive that enforces a SYNC
+  /// timeout takes a multiple of it (1.5 x is common): a loop with SYNC gaps beyond that needs a
+  /// larger value, or the drive leaves Operational (see sync_stats()).
+  std::uint32_t comm_cycle_period_us = 0;
+  /// The SYNC timeout factor of the drives, for sync_stats().over_timeout (gaps a drive would take
+  /// for a lost SYNC).
+  double sync_timeout_factor = 1.5;
+  /// TPDO COB-IDs with bit 30 = 0 ("RTR allowed"); false (default): bit 30 = 1, as many drives require.
+  bool tpdo_rtr_allowed = false;
+  /// Abort 0x06020000 answers a write that disables a PDO the drive does not have (TPDO3/4, TPDO2
+  /// without tpdo2): the PDO is absent, as good as disabled. false: any abort fails the boot.
+  bool tolerate_absent_pdos = true;
+  RecoveryPolicy recovery = RecoveryPolicy::Manual;
+  TimeNs recovery_retry = seconds(1);  ///< Automatic: at most one recovery start per drive per this
+  ExitStop exit_stop = ExitStop::QuickStop;
+  ExitNmt exit_nmt = ExitNmt::PreOperational;
+  TimeNs exit_timeout = milliseconds(500);    ///< request_safe_exit: longest wait for the stop
   std::uint32_t feedback_missing_cycles = 3;  ///< consecutive cycles without TPDO1 -> fault
   TimeNs boot_timeout = seconds(5);           ///< reset -> all boot-up messages
   TimeNs sdo_timeout = milliseconds(100);     ///< per SDO request
   TimeNs enable_timeout = seconds(1);         ///< request -> target state reached
 };
 
-enum class ArmPhase : std::uint8_t { Idle = 0, Resetting, Configuring, Starting, Running, Failed };
+enum class ArmPhase : std::uint8_t {
+  Idle = 0,
+  Resetting,
+  Configuring,
+  Starting,
+  Running,
+  Failed,
+  Stopping,
+  Stopped
+};
 const char* arm_phase_str(ArmPhase phase) noexcept;
 
 /// What the driver knows about one drive, updated by the received frames.
@@ -128,8 +191,8 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   const char* kind() const noexcept override { return "arm"; }
   /// Starts (or restarts) the boot sequence.
   void start(TimeNs now) noexcept override;
-  /// Running and every drive reports Operation enabled.
-  bool ready() const noexcept override { return phase_ == ArmPhase::Running && all_enabled(); }
+  /// Running, every drive reports Operation enabled, and none needs or is in a recovery.
+  bool ready() const noexcept override;
   /// Moves every drive to Operation enabled (resetting faults).
   void request_enable(TimeNs now) noexcept override;
   /// Moves every drive to Switch on disabled.
@@ -166,6 +229,25 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   /// Adds this driver's cyclic traffic on bus `bus` (index as given to create) to a budget.
   void declare_traffic(std::size_t bus, BusBudget& budget) const override;
 
+  /// Starts the recovery of every drive that needs it (see the top of this file). Returns the
+  /// number of drives whose recovery started; 0 while the safe state is in force or not Running.
+  std::size_t request_recovery(TimeNs now) noexcept;
+  /// The loop's safe state: while true no recovery starts (manual or automatic), and recoveries
+  /// under way stop before enabling the drive.
+  void set_safe_state(bool in_force) noexcept { safe_state_ = in_force; }
+  bool safe_state() const noexcept { return safe_state_; }
+  /// The drive needs a recovery (left Operational, rebooted, or fell into Fault while enabled).
+  bool needs_recovery(std::size_t drive) const noexcept;
+  /// A recovery of the drive is under way.
+  bool recovering(std::size_t drive) const noexcept;
+
+  /// Stops every drive and leaves it in the configured NMT state (see the top of this file).
+  void request_safe_exit(TimeNs now) noexcept;
+  bool safe_exit_done() const noexcept { return phase_ == ArmPhase::Stopped; }
+
+  /// SYNC intervals and jitter of bus `bus` (index as given to create).
+  const SyncStats& sync_stats(std::size_t bus) const noexcept { return buses_[bus].jitter.stats(); }
+
  private:
   struct Drive {
     ArmDriveConfig cfg;
@@ -189,11 +271,22 @@ class ArmDriver final : public JointDevice, public FrameHandler {
     std::uint32_t sticky = 0;  ///< flags that hold until the next start() (boot failure)
     mrqp_fw_cia402_state prev_state = MRQP_FW_CIA402_UNKNOWN;
     Claim last_claim = Claim::Accepted;
+    // Recovery.
+    enum class Recovery : std::uint8_t { None = 0, Configuring, Starting };
+    Recovery recovery = Recovery::None;
+    bool rebooted = false;  ///< a boot-up while running: the configuration is lost
+    bool recovery_failed = false;
+    TimeNs recovery_since = 0;
+    TimeNs recovery_attempt = 0;
+    bool attempted = false;
+    // Safe exit.
+    bool exit_nmt_sent = false;
   };
   struct BusSlot {
     std::array<std::int16_t, 128> node_to_drive{};
     bool cyclic_sent = false;  ///< cyclic traffic (RPDOs, SYNC) has started
     SyncProducer sync;
+    SyncJitter jitter;
     bool has_drives = false;
   };
 
@@ -206,12 +299,21 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   Claim on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept;
   void decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept;
   void decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void start_recovery(Drive& d, TimeNs now) noexcept;
+  void step_recovery(Drive& d, TimeNs now) noexcept;
+  void transmit_recovery(Drive& d, std::size_t* count, TimeNs now) noexcept;
+  void step_safe_exit(TimeNs now) noexcept;
+  std::size_t transmit_cyclic(TimeNs now) noexcept;
 
   ArmConfig config_;
   std::vector<Drive> drives_;
   std::vector<BusSlot> buses_;
   ArmPhase phase_ = ArmPhase::Idle;
   TimeNs phase_since_ = 0;
+  mrqp_fw_cia402_state wanted_ = MRQP_FW_CIA402_SWITCH_ON_DISABLED;  ///< the caller's last request
+  bool safe_state_ = false;
+  TimeNs exit_since_ = 0;
+  bool exit_nmt_stage_ = false;  ///< safe exit: the power stage is stopped, the NMT commands go out
   HeartbeatProducer master_heartbeat_;
   RouterAttachment routers_;
 };

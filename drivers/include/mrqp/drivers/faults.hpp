@@ -37,7 +37,8 @@ inline constexpr std::uint32_t kBootFailed = 1u << 16;  ///< the configuration o
 inline constexpr std::uint32_t kTornPair = 1u << 17;    ///< two halves of one sample did not match
 inline constexpr std::uint32_t kSampleLost = 1u << 18;  ///< a gap in a sequence counter
 inline constexpr std::uint32_t kDeviceWarning = 1u << 19;  ///< a device warning (temperature, limit...)
-inline constexpr std::uint32_t kLast = kDeviceWarning;
+inline constexpr std::uint32_t kRecovering = 1u << 20;     ///< the device is being brought back (recovery)
+inline constexpr std::uint32_t kLast = kRecovering;
 }  // namespace fault
 
 /// Static name of one flag ("heartbeat lost", ...); "unknown" for other values.
@@ -58,8 +59,16 @@ struct DeviceFaults {
   std::uint32_t lost_samples = 0;       ///< samples missing in the sequence counter
   std::uint32_t tx_queue_full = 0;      ///< frames for this device the bus refused (queue full)
   std::uint32_t sdo_abort_code = 0;     ///< boot: the abort code of the failed SDO write (0 = none)
-  std::uint16_t sdo_index = 0;          ///< boot: object of the failed SDO write
+  std::uint16_t sdo_index = 0;          ///< boot: object of the failed SDO transfer (abort or check)
   std::uint8_t sdo_subindex = 0;
+  std::uint8_t node = 0;                 ///< CANopen node id of the device (0: not a CANopen node)
+  std::uint8_t nmt_state = 0xFF;         ///< CANopen: last NMT state heard (0xFF: none yet)
+  bool sdo_check_failed = false;         ///< boot: a checked object (0x1000, 0x1018) has another value
+  std::uint32_t sdo_check_expected = 0;  ///< ... the configured value
+  std::uint32_t sdo_check_actual = 0;    ///< ... the value read
+  std::uint32_t sdo_check_mask = 0;      ///< ... the bits compared
+  std::uint32_t tolerated_aborts = 0;    ///< boot: PDO-disabling writes answered "object does not exist"
+  std::uint32_t recoveries = 0;          ///< times the device was brought back (recovery completed)
 };
 
 /// One bus, as seen by a driver.
@@ -97,6 +106,11 @@ struct FaultReport {
 /// Human-readable summary of the flags raised in a report, one line per device/bus with flags
 /// (for logs; allocates). Empty when the report is ok().
 std::string describe_faults(const FaultReport& report, const char* what = "device");
+
+/// One device's flags with what they mean (allocates): the node, the EMCY code and its CiA 301 /
+/// CiA 402 meaning, the NMT state of a state mismatch, an SDO abort with its code, meaning, object
+/// and node, a failed identity / device type check with the values expected and read.
+std::string describe_device_faults(const DeviceFaults& device);
 
 /// Comma-separated names of the flags in a mask (allocates).
 std::string fault_flags_str(std::uint32_t flags);

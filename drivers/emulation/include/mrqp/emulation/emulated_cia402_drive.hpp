@@ -14,6 +14,11 @@
 // (tools/drive_emu) runs one per node id with a physical joint model, the controller loop's plant
 // one per drive of a robot. No allocation. Part of mrqp_emulation, not of the runtime drivers.
 //
+// How strict it is comes from Options::profile (vendor_profile.hpp): the number of TPDOs, SDO aborts
+// for absent / read-only / out-of-range objects, the PDO rules, the RTR bit check, a SYNC timeout
+// with EMCY 0x8100 and the error behaviour of 0x1029, statusword bits 4 and 9, identity 0x1018
+// and device type 0x1000. VendorProfile::lenient() (the default) is the behaviour it always had.
+//
 // Fault switches (off by default; with all off the drive behaves exactly as before they existed):
 // stop_heartbeat_at(), set_pdo_silent() (no TPDOs: feedback missing), set_silent() (no frame at
 // all: no heartbeat, no SDO answer, no PDO, no EMCY), corrupt_pdos(n) (the next n TPDOs one byte
@@ -25,6 +30,7 @@
 #include <cstdint>
 
 #include "mrqp/drivers/time.hpp"
+#include "mrqp/emulation/vendor_profile.hpp"
 #include "mrqp/firmware_if/arm_pdo.h"
 #include "mrqp/firmware_if/cia402.h"
 #include "mrqp/firmware_if/frame.h"
@@ -43,6 +49,7 @@ class EmulatedCia402Drive {
     TimeNs boot_delay = 2000000;  ///< reset -> boot-up message (2 ms)
     TimeNs response_delay =
         0;  ///< SDO answer, TPDOs and error reset: ready this long after the request / SYNC
+    VendorProfile profile = VendorProfile::lenient();  ///< how strict the drive is
   };
 
   /// What the TPDOs report, in wire units.
@@ -120,6 +127,10 @@ class EmulatedCia402Drive {
   std::uint16_t error_code() const noexcept { return error_code_; }
   unsigned sdo_writes() const noexcept { return sdo_writes_; }
   unsigned syncs() const noexcept { return syncs_; }
+  /// Communication errors (SYNC timeouts) so far; whether one is still active (no SYNC since).
+  unsigned comm_errors() const noexcept { return comm_errors_; }
+  bool comm_error_active() const noexcept { return comm_error_active_; }
+  const VendorProfile& profile() const noexcept { return options_.profile; }
   bool rpdo1_configured() const noexcept;
   bool tpdo1_configured() const noexcept;
   bool tpdo2_configured() const noexcept;
@@ -133,6 +144,10 @@ class EmulatedCia402Drive {
     std::uint32_t value;
   };
   void reset_od(bool communication_only) noexcept;
+  bool present(std::uint16_t index) const noexcept;
+  TimeNs sync_deadline() const noexcept;
+  void comm_error(TimeNs now) noexcept;
+  std::uint16_t other_status_bits() const noexcept;
   Entry* find(std::uint16_t index, std::uint8_t sub) noexcept;
   const Entry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
   bool object_exists(std::uint16_t index) const noexcept;
@@ -145,7 +160,7 @@ class EmulatedCia402Drive {
 
   Host& host_;
   Options options_;
-  std::array<Entry, 48> od_{};
+  std::array<Entry, 64> od_{};
   std::size_t od_count_ = 0;
   mrqp_fw_nmt_state nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
   mrqp_fw_cia402_state state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
@@ -170,6 +185,9 @@ class EmulatedCia402Drive {
   std::uint32_t abort_code_ = 0;
   unsigned sdo_writes_ = 0;
   unsigned syncs_ = 0;
+  TimeNs last_sync_ = kNever;  ///< last SYNC in Operational (kNever: not watching)
+  bool comm_error_active_ = false;
+  unsigned comm_errors_ = 0;
 };
 
 }  // namespace mrqp::emulation

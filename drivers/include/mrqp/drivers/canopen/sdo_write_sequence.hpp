@@ -1,5 +1,12 @@
 // mrqp drivers -- CANopen master, SDO: one node's configuration as a sequence of expedited SDO
-// writes, one in flight at a time (firmware_if/sdo_client.h does each transfer).
+// transfers, one in flight at a time (firmware_if/sdo_client.h does each transfer): writes, writes
+// that an absent object satisfies, and reads checked against an expected value.
+//
+// SdoAccess::Write must be acknowledged. SdoAccess::WriteUnlessAbsent (the writes that disable a
+// PDO) is also satisfied by abort 0x06020000 "object does not exist": CiA 301 leaves the number
+// of PDOs to the device, and a PDO that does not exist is as good as disabled (counted in
+// tolerated()). SdoAccess::ReadCheck reads the object (upload) and requires
+// (read & mask) == (value & mask), else Mismatch (the value read in read_value()).
 //
 // init() takes the list (setup, allocates). restart() rewinds it. process(now) starts the next
 // write when none is in flight (the request frame in `out`: Send), and turns a request
@@ -8,7 +15,8 @@
 // kept back by a full queue is timed from then). on_frame() takes the node's SDO responses:
 // Done (this write accepted; the next one starts at the next process()), Send (a segment to
 // send), Failed (the node aborted: abort_code()), FailedSend (the client aborts a bad answer),
-// Unexpected (nothing in flight or not an answer). The write that failed stays current().
+// Unexpected (nothing in flight or not an answer), Mismatch (a ReadCheck read another value).
+// The transfer that failed stays current().
 // Real-time safe after init().
 #pragma once
 
@@ -23,16 +31,24 @@
 
 namespace mrqp::drivers {
 
+enum class SdoAccess : std::uint8_t {
+  Write = 0,          ///< write `value`; any abort fails
+  WriteUnlessAbsent,  ///< write `value`; abort 0x06020000 (object does not exist) satisfies it too
+  ReadCheck           ///< read; (read & mask) must equal (value & mask)
+};
+
 struct SdoWrite {
   std::uint16_t index;
   std::uint8_t subindex;
-  std::uint8_t size;  ///< 1, 2 or 4 bytes (expedited)
+  std::uint8_t size;  ///< 1, 2 or 4 bytes (expedited); for a read the most bytes accepted
   std::uint32_t value;
+  SdoAccess access = SdoAccess::Write;
+  std::uint32_t mask = 0xFFFFFFFFu;  ///< ReadCheck: the bits compared
 };
 
 class SdoWriteSequence {
  public:
-  enum class Step : std::uint8_t { Idle = 0, Send, Done, Failed, FailedSend, Unexpected };
+  enum class Step : std::uint8_t { Idle = 0, Send, Done, Failed, FailedSend, Unexpected, Mismatch };
 
   /// Setup: the node and its writes (allocates).
   void init(std::uint8_t node, std::vector<SdoWrite> writes, TimeNs sdo_timeout);
@@ -55,6 +71,12 @@ class SdoWriteSequence {
   std::size_t position() const noexcept { return step_; }
   /// The abort code of the failed write (the node's, or the client's / timeout's).
   std::uint32_t abort_code() const noexcept { return client_.abort_code; }
+  /// The value a ReadCheck read (after Mismatch).
+  std::uint32_t read_value() const noexcept { return read_value_; }
+  /// WriteUnlessAbsent writes answered "object does not exist" since restart(), and the last one.
+  std::uint32_t tolerated() const noexcept { return tolerated_; }
+  std::uint16_t last_tolerated_index() const noexcept { return tolerated_index_; }
+  std::uint8_t last_tolerated_subindex() const noexcept { return tolerated_subindex_; }
 
  private:
   std::uint8_t node_ = 1;
@@ -65,6 +87,10 @@ class SdoWriteSequence {
   std::array<std::uint8_t, 4> data_{};
   bool busy_ = false;
   TimeNs sent_at_ = 0;
+  std::uint32_t read_value_ = 0;
+  std::uint32_t tolerated_ = 0;
+  std::uint16_t tolerated_index_ = 0;
+  std::uint8_t tolerated_subindex_ = 0;
 };
 
 }  // namespace mrqp::drivers
