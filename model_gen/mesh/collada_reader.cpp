@@ -1,7 +1,9 @@
 // COLLADA 1.4/1.5 meshes: vertex positions through <vertices>/<source>/<accessor>, node transforms
 // of the visual scene, <asset><unit> (the rules and limitations: mesh_reader.hpp).
 #include "mesh_format.hpp"
+#include "mesh_limits.hpp"
 #include "text_tokens.hpp"
+#include "unit_direction.hpp"
 #include "xml_document.hpp"
 
 #include <algorithm>
@@ -53,11 +55,16 @@ struct Mat4 {
     return t;
   }
 
-  // Rotation by `degrees` about (x, y, z) (need not be unit; zero gives the identity).
+  // Rotation by `degrees` about (x, y, z) (need not be unit, normalised without overflow:
+  // unit_direction.hpp; zero gives the identity).
   static Mat4 rotation(double x, double y, double z, double degrees) {
     Mat4 t;
+    const double d = directionDivisor(x, y, z);
+    if (d == 0.0) return t;
+    x /= d;
+    y /= d;
+    z /= d;
     const double len = std::sqrt(x * x + y * y + z * z);
-    if (!(len > 0.0)) return t;
     x /= len;
     y /= len;
     z /= len;
@@ -152,25 +159,43 @@ class ColladaReader {
     return it->second;
   }
 
-  std::vector<double> numbers(std::size_t e) const {
+  // The numbers of element e's text, at most `most` of them (the rest is not parsed).
+  std::vector<double> numbers(std::size_t e,
+                              std::size_t most = std::numeric_limits<std::size_t>::max()) const {
     std::vector<double> v;
-    forEachToken(doc_[e].text, [&](std::string_view tok, std::size_t) {
+    const std::string_view text = doc_[e].text;
+    std::size_t i = 0;
+    while (i < text.size() && v.size() < most) {
+      while (i < text.size() && isSpace(text[i])) ++i;
+      const std::size_t b = i;
+      while (i < text.size() && !isSpace(text[i])) ++i;
+      if (i == b) break;
+      const std::string_view tok = text.substr(b, i - b);
       double x = 0.0;
       if (!parseDouble(tok, x) || !std::isfinite(x)) {
         fail("malformed COLLADA: bad number " + quoteToken(tok) + " in " + describe(e));
       }
       v.push_back(x);
-    });
+    }
     return v;
   }
 
+  // Exactly `expected` numbers (one more is read to tell a longer list).
   std::vector<double> numbers(std::size_t e, std::size_t expected, std::size_t node) const {
-    std::vector<double> v = numbers(e);
+    std::vector<double> v = numbers(e, expected + 1);
     if (v.size() != expected) {
       fail("malformed COLLADA: <" + doc_[e].name + "> in " + describe(node) + " has " +
-           std::to_string(v.size()) + " numbers, expected " + std::to_string(expected));
+           (v.size() > expected ? "more than " + std::to_string(expected) : std::to_string(v.size())) +
+           " numbers, expected " + std::to_string(expected));
     }
     return v;
+  }
+
+  // The numbers of a <float_array>, parsed once however often its mesh is instanced.
+  const std::vector<double>& arrayNumbers(std::size_t e) {
+    auto it = arrays_.find(e);
+    if (it == arrays_.end()) it = arrays_.emplace(e, numbers(e)).first;
+    return it->second;
   }
 
   std::size_t sizeAttr(std::size_t e, const char* name, std::size_t fallback) const {
@@ -228,6 +253,16 @@ class ColladaReader {
       fail("unsupported COLLADA: nodes nested deeper than " + std::to_string(kMaxNodeDepth) +
            " (an <instance_node> cycle?) at " + describe(node));
     }
+    if (++visits_ > kMaxColladaNodeVisits) {
+      fail("unsupported COLLADA: more than " + std::to_string(kMaxColladaNodeVisits) +
+           " node visits (the COLLADA node-visit limit; <instance_node> references multiply them) at " +
+           describe(node));
+    }
+    sceneElements_ += doc_[node].children.size();
+    if (sceneElements_ > kMaxColladaSceneElements) {
+      fail("unsupported COLLADA: more than " + std::to_string(kMaxColladaSceneElements) +
+           " elements examined in the visual scene (the COLLADA scene limit) at " + describe(node));
+    }
     const Mat4 t = parent * localTransform(node);
     for (const std::size_t c : doc_[node].children) {
       const std::string& n = doc_[c].name;
@@ -265,7 +300,7 @@ class ColladaReader {
     const std::size_t source = resolve(*input, "source", "source");
     const auto array = child(source, "float_array");
     if (!array) fail("malformed COLLADA: position " + describe(source) + " has no <float_array>");
-    const std::vector<double> values = numbers(*array);
+    const std::vector<double>& values = arrayNumbers(*array);
     const std::size_t declared = sizeAttr(*array, "count", values.size());
     if (values.size() < declared) {
       fail("malformed COLLADA: " + describe(*array) + " declares " + std::to_string(declared) +
@@ -304,14 +339,17 @@ class ColladaReader {
 
   const XmlDocument& doc_;
   std::unordered_map<std::string, std::size_t> ids_;
+  std::unordered_map<std::size_t, std::vector<double>> arrays_;  // <float_array> element -> numbers
   double unit_ = 1.0;
   std::size_t instanced_ = 0;
+  std::size_t visits_ = 0;         // nodes visited (mesh_limits.hpp)
+  std::size_t sceneElements_ = 0;  // their child elements examined
 };
 
 }  // namespace
 
 void readDae(const std::string& data, VertexSet& out) {
-  const XmlDocument doc(data);
+  const XmlDocument doc(data, XmlLimits{kMaxXmlDepth, kMaxXmlNodes});
   ColladaReader(doc).read(out);
 }
 

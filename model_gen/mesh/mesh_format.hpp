@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include "mesh_limits.hpp"
+
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -22,10 +24,14 @@ struct MeshError {
 
 [[noreturn]] inline void fail(std::string problem) { throw MeshError{std::move(problem)}; }
 
-/// Distinct vertex positions, in order of first appearance (-0.0 and 0.0 are the same).
+/// Distinct vertex positions, in order of first appearance (-0.0 and 0.0 are the same). At most
+/// kMaxMeshVertices positions may be added, repeats included (mesh_limits.hpp).
 class VertexSet {
  public:
   void add(const Eigen::Vector3d& p) {
+    if (++added_ > kMaxMeshVertices) {
+      fail("more than " + std::to_string(kMaxMeshVertices) + " vertices (the mesh vertex limit)");
+    }
     Key k{};
     for (int i = 0; i < 3; ++i) {
       const double v = p[i] == 0.0 ? 0.0 : p[i];  // -0.0 and 0.0 are the same position
@@ -54,6 +60,7 @@ class VertexSet {
   };
   std::unordered_set<Key, KeyHash> seen_;
   std::vector<Eigen::Vector3d> points_;
+  std::size_t added_ = 0;
 };
 
 /// Binary or ASCII STL (mesh_reader.hpp says how the two are told apart).

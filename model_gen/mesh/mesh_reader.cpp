@@ -1,6 +1,8 @@
 #include "mesh_reader.hpp"
 
+#include "bounded_file.hpp"
 #include "mesh_format.hpp"
+#include "mesh_limits.hpp"
 #include "text_tokens.hpp"
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <new>
 #include <string_view>
 #include <system_error>
@@ -86,14 +87,9 @@ MeshReadResult readMeshVertices(const std::string& path) {
                                 : "unsupported mesh format '" + ext + "' (supported: .stl, .obj, .dae)");
     }
 
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return failed("cannot open file");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) return failed("cannot read file");
-    in.seekg(0, std::ios::beg);
-    std::string data(static_cast<std::size_t>(size), '\0');
-    if (size > 0 && !in.read(data.data(), size)) return failed("cannot read file");
+    const BoundedRead file = readFileAtMost(path, kMaxMeshBytes, "mesh ");
+    if (!file.ok) return failed(file.error);
+    const std::string& data = file.data;
 
     VertexSet vertices;
     if (ext == ".stl")

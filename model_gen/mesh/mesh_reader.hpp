@@ -48,14 +48,19 @@ struct MeshReadResult {
   //   "truncated binary STL: ...", "binary STL size mismatch: ...",
   //   "malformed ASCII STL: ...", "truncated ASCII STL: ...",
   //   "malformed OBJ: ...", "malformed XML: ...", "malformed COLLADA: ...",
-  //   "unsupported COLLADA: ...", "no vertices". Text formats name the offending line
+  //   "unsupported COLLADA: ...", "no vertices", and the limits of mesh_limits.hpp:
+  //   "larger than the 67108864-byte mesh limit (N bytes)", "more than 5000000 vertices (the
+  //   mesh vertex limit)", "<x> nested deeper than 256 levels at line L", "more than 2000000
+  //   XML elements and attributes at line L", "unsupported COLLADA: more than 100000 node
+  //   visits (the COLLADA node-visit limit; ...)". Text formats name the offending line
   //   ("... at line 12"); binary STL errors give the declared and actual sizes.
   std::string error;
   std::vector<Eigen::Vector3d> vertices;
 };
 
 // Reads the vertex positions of the mesh file at `path` (a plain filesystem path; use
-// resolveMeshUri first for URDF filenames). Never throws for bad input.
+// resolveMeshUri first for URDF filenames). Never throws for bad input; never reads more than
+// kMaxMeshBytes of a file nor walks a COLLADA scene without bound (mesh_limits.hpp).
 MeshReadResult readMeshVertices(const std::string& path);
 
 // Resolves a URDF mesh filename to an existing regular file; returns "" if there is none.

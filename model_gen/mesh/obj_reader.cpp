@@ -23,7 +23,9 @@ void readObj(const std::string& data, VertexSet& out) {
       text = text.substr(0, hash);
     }
     toks.clear();
-    forEachToken(text, [&](std::string_view t, std::size_t) { toks.push_back(t); });
+    forEachToken(text, [&](std::string_view t, std::size_t) {
+      if (toks.size() < 4) toks.push_back(t);  // "v x y z": the rest of a line is not needed
+    });
     if (toks.empty() || toks[0] != "v") continue;
     if (toks.size() < 4) {
       fail("malformed OBJ: vertex with fewer than 3 coordinates at line " + std::to_string(line));

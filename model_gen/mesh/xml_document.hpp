@@ -1,6 +1,9 @@
-// A minimal XML reader for COLLADA files (no external library): elements with their local name,
-// attributes, character data and children, in document order; errors throw MeshError
-// ("malformed XML: ... at line N"). Internal to mrqp_mesh.
+// A minimal XML reader (no external library) for COLLADA files and, before urdfdom parses them,
+// URDF files (model_gen/src/urdf_preparse.cpp): elements with their local name, attributes,
+// character data, children and line, in document order. Iterative (no recursion on the nesting),
+// with limits on the nesting depth and on the number of elements and attributes. Errors throw
+// MeshError: "malformed XML: ... at line N", or for a limit "<x> nested deeper than N levels at
+// line L" / "more than N XML elements and attributes at line L".
 #pragma once
 
 #include "mesh_format.hpp"
@@ -23,6 +26,7 @@ struct XmlElement {
   std::string text;  // all character data directly inside, concatenated
   std::vector<std::size_t> children;
   std::size_t parent = std::numeric_limits<std::size_t>::max();
+  std::size_t line = 0;  // of the start tag
 
   const std::string* attr(std::string_view n) const {
     for (const auto& a : attrs) {
@@ -32,17 +36,52 @@ struct XmlElement {
   }
 };
 
+/// The nesting depth (the root element is level 1) and the number of elements and attributes
+/// together a document may have.
+struct XmlLimits {
+  int max_depth;
+  std::size_t max_nodes;
+};
+
 class XmlDocument {
  public:
-  explicit XmlDocument(const std::string& s) : s_(s) { parse(); }
+  XmlDocument(const std::string& s, XmlLimits limits) : s_(s), limits_(limits) { parse(); }
   const XmlElement& operator[](std::size_t i) const { return elems_[i]; }
   std::size_t size() const { return elems_.size(); }
 
  private:
   [[noreturn]] void error(std::size_t offset, const std::string& what) const {
+    fail("malformed XML: " + what + " at line " + std::to_string(lineOf(offset)));
+  }
+
+  std::size_t lineOf(std::size_t offset) const {
     const auto end = s_.begin() + static_cast<std::ptrdiff_t>(std::min(offset, s_.size()));
-    const auto line = 1 + std::count(s_.begin(), end, '\n');
-    fail("malformed XML: " + what + " at line " + std::to_string(line));
+    return 1 + static_cast<std::size_t>(std::count(s_.begin(), end, '\n'));
+  }
+
+  /// Line of `offset`, counted forward from the last call's offset (offsets only grow while parsing).
+  std::size_t lineAt(std::size_t offset) {
+    lineCount_ +=
+        static_cast<std::size_t>(std::count(s_.begin() + static_cast<std::ptrdiff_t>(lineOffset_),
+                                            s_.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+    lineOffset_ = offset;
+    return lineCount_;
+  }
+
+  static std::string tag(const std::string& rawName) {
+    std::string t = "<";
+    for (std::size_t i = 0; i < rawName.size() && i < 40; ++i) {
+      const auto c = static_cast<unsigned char>(rawName[i]);
+      t += c < 0x20 || c >= 0x7F ? '?' : rawName[i];
+    }
+    return t + (rawName.size() > 40 ? "...>" : ">");
+  }
+
+  void countNode(std::size_t offset) {
+    if (++nodes_ > limits_.max_nodes) {
+      fail("more than " + std::to_string(limits_.max_nodes) + " XML elements and attributes at line " +
+           std::to_string(lineOf(offset)));
+    }
   }
 
   static bool isNameChar(char c) {
@@ -218,8 +257,15 @@ class XmlDocument {
           if (close == std::string::npos) error(k, "unterminated value of attribute '" + attrName + "'");
           std::string value;
           appendDecoded(value, std::string_view(s_.data() + k + 1, close - k - 1));
+          countNode(k);
           el.attrs.emplace_back(std::move(attrName), std::move(value));
           k = close + 1;
+        }
+        countNode(i);
+        el.line = lineAt(i);
+        if (static_cast<int>(open.size()) >= limits_.max_depth) {
+          fail(tag(el.rawName) + " nested deeper than " + std::to_string(limits_.max_depth) +
+               " levels at line " + std::to_string(el.line));
         }
         const std::size_t index = elems_.size();
         if (!open.empty()) {
@@ -241,7 +287,11 @@ class XmlDocument {
   }
 
   const std::string& s_;
+  XmlLimits limits_;
   std::vector<XmlElement> elems_;
+  std::size_t nodes_ = 0;
+  std::size_t lineOffset_ = 0;
+  std::size_t lineCount_ = 1;
 };
 
 }  // namespace mrqp::gen::mesh
