@@ -1,4 +1,5 @@
-// mrqp-gen: URDF -> allocation-free C++ model code. See docs/model_gen.md.
+// mrqp-gen: URDF -> allocation-free C++ model code. See docs/model_gen.md. Any failure is one
+// error line on stderr and a non-zero exit; exit 0 means the model's files are written.
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -44,9 +45,23 @@ bool writeIfChanged(const std::filesystem::path& path, const std::string& text, 
   return true;
 }
 
-}  // namespace
+/// `text` on one line: control characters (a newline in a file name, say) written as \xHH.
+std::string oneLine(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7F) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned>(c));
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::string urdf, name, out;
   bool probe = false, quiet = false;
   mrqp::gen::LoadOptions options;
@@ -77,12 +92,14 @@ int main(int argc, char** argv) {
       std::cout << kUsage;
       return 0;
     } else if (!arg.empty() && arg[0] == '-') {
-      std::cerr << "mrqp-gen: unknown option " << arg << "\n" << kUsage;
+      std::cerr << "mrqp-gen: unknown option " << oneLine(arg) << "\n" << kUsage;
       return 2;
     } else if (urdf.empty())
       urdf = arg;
     else {
-      std::cerr << "mrqp-gen: more than one URDF file given (" << urdf << ", " << arg << ")\n" << kUsage;
+      std::cerr << "mrqp-gen: more than one URDF file given (" << oneLine(urdf) << ", " << oneLine(arg)
+                << ")\n"
+                << kUsage;
       return 2;
     }
   }
@@ -96,25 +113,26 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (!mrqp::gen::isValidModelName(name)) {
-    std::cerr << "mrqp-gen: --name '" << name << "' is not a valid C++ identifier\n";
+    std::cerr << "mrqp-gen: --name '" << oneLine(name) << "' is not a valid C++ identifier\n";
     return 2;
   }
   mrqp::gen::KinematicTree tree;
   try {
     tree = mrqp::gen::loadUrdfFile(urdf, options);
   } catch (const mrqp::gen::ModelError& e) {
-    std::cerr << "mrqp-gen: error: " << e.what() << "\n";
+    std::cerr << "mrqp-gen: error: " << oneLine(e.what()) << "\n";
     return 1;
   }
   if (!quiet)
-    for (const auto& w : tree.warnings) std::cerr << "mrqp-gen: warning: " << urdf << ": " << w << "\n";
+    for (const auto& w : tree.warnings)
+      std::cerr << "mrqp-gen: warning: " << oneLine(urdf) << ": " << oneLine(w) << "\n";
 
   const std::string origin = std::filesystem::path(urdf).filename().string();
   const mrqp::gen::EmittedModel code = mrqp::gen::emitModel(tree, name, origin, probe);
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
   if (ec) {
-    std::cerr << "mrqp-gen: error: cannot create " << out << ": " << ec.message() << "\n";
+    std::cerr << "mrqp-gen: error: cannot create " << oneLine(out) << ": " << ec.message() << "\n";
     return 1;
   }
   std::string error;
@@ -122,12 +140,26 @@ int main(int argc, char** argv) {
   if (!writeIfChanged(dir / (name + ".hpp"), code.header, error) ||
       !writeIfChanged(dir / (name + ".cpp"), code.source, error) ||
       (probe && !writeIfChanged(dir / (name + "_probe.cpp"), code.probe, error))) {
-    std::cerr << "mrqp-gen: error: " << error << "\n";
+    std::cerr << "mrqp-gen: error: " << oneLine(error) << "\n";
     return 1;
   }
   if (!quiet)
     std::printf("mrqp-gen: %s -> %s/%s.{hpp,cpp}: %zu bodies, %zu frames, nq %d, nv %d, mass %.6g kg%s\n",
-                urdf.c_str(), out.c_str(), name.c_str(), tree.bodies.size(), tree.frames.size(), tree.nq,
-                tree.nv, tree.totalMass(), tree.floating_base ? ", floating base" : "");
+                oneLine(urdf).c_str(), oneLine(out).c_str(), name.c_str(), tree.bodies.size(),
+                tree.frames.size(), tree.nq, tree.nv, tree.totalMass(),
+                tree.floating_base ? ", floating base" : "");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "mrqp-gen: error: " << oneLine(e.what()) << "\n";
+  } catch (...) {
+    std::cerr << "mrqp-gen: error: unknown exception\n";
+  }
+  return 1;
 }

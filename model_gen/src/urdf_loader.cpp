@@ -15,8 +15,14 @@
 #include <set>
 #include <sstream>
 
+#include "bounded_file.hpp"
 #include "convex_hull.hpp"
+#include "generator_limits.hpp"
 #include "mesh_reader.hpp"
+#include "name_rule.hpp"
+#include "parent_walk.hpp"
+#include "unit_direction.hpp"
+#include "urdf_preparse.hpp"
 
 namespace mrqp::gen {
 namespace {
@@ -31,7 +37,8 @@ class CapturedLog : public console_bridge::OutputHandler {
   CapturedLog(const CapturedLog&) = delete;
   CapturedLog& operator=(const CapturedLog&) = delete;
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(text);
+    // urdfdom's text holds names as read: shown printable, on one line
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_WARN) messages.push_back(printable(text, 400));
     if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) error = true;
   }
   std::vector<std::string> messages;
@@ -65,8 +72,8 @@ std::string describeParseFailure(const std::string& xml) {
   std::string cur = links.front();
   while (parentOf.count(cur)) {
     if (!seen.insert(cur).second)
-      return "joint '" + parentOf[cur].first + "': closes a kinematic cycle through link '" + cur +
-             "' (no root link: every link has a parent joint)";
+      return "joint '" + printable(parentOf[cur].first) + "': closes a kinematic cycle through link '" +
+             printable(cur) + "' (no root link: every link has a parent joint)";
     cur = parentOf[cur].second;
   }
   return {};
@@ -95,18 +102,41 @@ Placement toPlacement(const urdf::Pose& pose) {
   return out;
 }
 
+void checkFinite(const std::string& source, const std::string& element, const char* field, double x) {
+  if (!std::isfinite(x)) fail(source, element + ": " + field + " is NaN or infinite");
+}
+
+/// `x` finite and within [-max, max] (generator_limits.hpp).
+void checkRange(const std::string& source, const std::string& element, const char* field, double x,
+                double max) {
+  checkFinite(source, element, field, x);
+  if (std::fabs(x) > max) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %g is outside [%g, %g]", x, -max, max);
+    fail(source, element + ": " + field + buf);
+  }
+}
+
+void checkRange(const std::string& source, const std::string& element, const std::string& field,
+                const urdf::Vector3& v, double max) {
+  checkRange(source, element, (field + "x").c_str(), v.x, max);
+  checkRange(source, element, (field + "y").c_str(), v.y, max);
+  checkRange(source, element, (field + "z").c_str(), v.z, max);
+}
+
 void checkPose(const std::string& source, const std::string& element, const urdf::Pose& pose) {
   const auto& r = pose.rotation;
   if (!finite(pose.position) || !std::isfinite(r.w) || !std::isfinite(r.x) || !std::isfinite(r.y) ||
       !std::isfinite(r.z))
     fail(source, element + ": origin has a NaN or infinite number");
+  checkRange(source, element + " origin", "", pose.position, kMaxLength);
 }
 
-void checkFinite(const std::string& source, const std::string& element, const char* field, double x) {
-  if (!std::isfinite(x)) fail(source, element + ": " + field + " is NaN or infinite");
+/// "link 'name'" for messages; names that broke the name rule never get here (checkNames), a
+/// reference to a missing element may: shown printable either way.
+std::string quoted(const std::string& kind, const std::string& name) {
+  return kind + " '" + printable(name) + "'";
 }
-
-std::string quoted(const std::string& kind, const std::string& name) { return kind + " '" + name + "'"; }
 
 /// Validates a link's inertial and returns it about the link origin, in link axes.
 BodyInertia linkInertia(const std::string& source, const urdf::Link& link, bool allow_nonphysical,
@@ -118,7 +148,8 @@ BodyInertia linkInertia(const std::string& source, const urdf::Link& link, bool 
   checkPose(source, el + " inertial", in.origin);
   const double vals[] = {in.mass, in.ixx, in.ixy, in.ixz, in.iyy, in.iyz, in.izz};
   const char* names[] = {"mass", "ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
-  for (int i = 0; i < 7; ++i) checkFinite(source, el + " inertial", names[i], vals[i]);
+  for (int i = 0; i < 7; ++i)
+    checkRange(source, el + " inertial", names[i], vals[i], i == 0 ? kMaxMass : kMaxInertia);
   if (in.mass < 0.0) fail(source, el + ": negative mass " + std::to_string(in.mass));
   Eigen::Matrix3d Ic;
   Ic << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
@@ -173,6 +204,7 @@ class TreeBuilder {
       : model_(model), source_(std::move(source)), base_dir_(std::move(base_dir)), opt_(opt) {}
 
   KinematicTree build() {
+    checkNames();
     tree_.robot_name = model_.getName();
     tree_.floating_base = opt_.floating_base;
     validateJoints();
@@ -198,13 +230,30 @@ class TreeBuilder {
       rootBody.joint.v_index = 0;
     }
     tree_.bodies.push_back(rootBody);
-    visit(*root, 0, Placement{});
+    walk(*root);
     resolveMimics();
     warnMasslessSubtrees();
     return std::move(tree_);
   }
 
  private:
+  /// Every name that can reach the generated code or a message follows the rule of name_rule.hpp.
+  void checkNames() {
+    if (const std::string v = nameRuleViolation(model_.getName()); !v.empty())
+      fail(source_, "robot name '" + printable(model_.getName()) + "': " + v);
+    for (const auto& [name, lp] : model_.links_)
+      if (const std::string v = nameRuleViolation(name); !v.empty())
+        fail(source_, "link '" + printable(name) + "': name " + v);
+    for (const auto& [name, jp] : model_.joints_) {
+      if (const std::string v = nameRuleViolation(name); !v.empty())
+        fail(source_, "joint '" + printable(name) + "': name " + v);
+      if (jp->mimic)
+        if (const std::string v = nameRuleViolation(jp->mimic->joint_name); !v.empty())
+          fail(source_, "joint '" + printable(name) + "': mimic joint name '" +
+                            printable(jp->mimic->joint_name) + "': " + v);
+    }
+  }
+
   void validateJoints() {
     for (const auto& [name, jp] : model_.joints_) {
       const auto& j = *jp;
@@ -227,13 +276,13 @@ class TreeBuilder {
       }
       if (j.type == urdf::Joint::FIXED) continue;
       if (!finite(j.axis)) fail(source_, el + ": axis has a NaN or infinite number");
-      if (toEigen(j.axis).norm() < 1e-12) fail(source_, el + ": axis is zero");
+      if (toEigen(j.axis).cwiseAbs().maxCoeff() < kMinAxisComponent) fail(source_, el + ": axis is zero");
       if (j.limits) {
         const auto& l = *j.limits;
-        checkFinite(source_, el + " limit", "lower", l.lower);
-        checkFinite(source_, el + " limit", "upper", l.upper);
-        checkFinite(source_, el + " limit", "velocity", l.velocity);
-        checkFinite(source_, el + " limit", "effort", l.effort);
+        checkRange(source_, el + " limit", "lower", l.lower, kMaxJointLimit);
+        checkRange(source_, el + " limit", "upper", l.upper, kMaxJointLimit);
+        checkRange(source_, el + " limit", "velocity", l.velocity, kMaxJointLimit);
+        checkRange(source_, el + " limit", "effort", l.effort, kMaxJointLimit);
         if (j.type != urdf::Joint::CONTINUOUS && l.lower > l.upper) {
           std::ostringstream os;
           os << el << ": lower limit " << l.lower << " > upper limit " << l.upper;
@@ -243,8 +292,8 @@ class TreeBuilder {
         if (l.effort < 0) fail(source_, el + ": negative effort limit");
       }
       if (j.mimic) {
-        checkFinite(source_, el + " mimic", "multiplier", j.mimic->multiplier);
-        checkFinite(source_, el + " mimic", "offset", j.mimic->offset);
+        checkRange(source_, el + " mimic", "multiplier", j.mimic->multiplier, kMaxMimicFactor);
+        checkRange(source_, el + " mimic", "offset", j.mimic->offset, kMaxMimicFactor);
         auto it = model_.joints_.find(j.mimic->joint_name);
         if (it == model_.joints_.end())
           fail(source_, el + ": mimic refers to unknown joint '" + j.mimic->joint_name + "'");
@@ -276,21 +325,68 @@ class TreeBuilder {
       for (const auto& r : roots) list += (list.empty() ? "'" : ", '") + r + "'";
       fail(source_, "several root links: " + list + " (the tree must have exactly one root)");
     }
-    // Cycle detection: walking up from every link must reach the root.
+    // Cycle detection: walking up from every link must reach the root (parent_walk.hpp: linear).
+    std::vector<const std::string*> names;
+    std::map<std::string, int> index;
     for (const auto& [name, lp] : model_.links_) {
-      std::set<std::string> seen;
-      std::string cur = name;
-      while (parentJoint.count(cur)) {
-        if (!seen.insert(cur).second)
-          fail(source_,
-               quoted("joint", parentJoint[cur]) + ": closes a kinematic cycle through link '" + cur + "'");
-        cur = model_.joints_.at(parentJoint[cur])->parent_link_name;
-      }
+      index.emplace(name, static_cast<int>(names.size()));
+      names.push_back(&name);
+    }
+    std::vector<int> parent(names.size(), -1);
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (auto it = parentJoint.find(*names[i]); it != parentJoint.end())
+        parent[i] = index.at(model_.joints_.at(it->second)->parent_link_name);
+    if (const int c = firstNodeOnCycle(parent); c >= 0) {
+      const std::string& link = *names[idx(c)];
+      fail(source_,
+           quoted("joint", parentJoint[link]) + ": closes a kinematic cycle through " + quoted("link", link));
     }
     return model_.getLink(roots.front());
   }
 
-  void visit(const urdf::Link& link, int body, const Placement& X_body_link) {
+  /// Depth-first pre-order walk from the root, children in the order of their joint names, with an
+  /// explicit stack (a 10,000-link chain is no deeper on the call stack than one link). A joint is
+  /// entered when its child is taken from the stack: fixed joints merge the child into the body.
+  void walk(const urdf::Link& root) {
+    struct Pending {
+      const urdf::Joint* joint;  ///< null for the root
+      int body;                  ///< the parent's body
+      Placement X_body_parent;   ///< the parent link in that body
+    };
+    std::vector<Pending> stack{{nullptr, 0, Placement{}}};
+    std::vector<urdf::JointSharedPtr> children;
+    while (!stack.empty()) {
+      const Pending p = stack.back();
+      stack.pop_back();
+      const urdf::Link* link = &root;
+      int body = p.body;
+      Placement X = p.X_body_parent;
+      if (p.joint) {
+        const urdf::Joint& j = *p.joint;
+        link = model_.getLink(j.child_link_name).get();
+        X = p.X_body_parent * toPlacement(j.parent_to_joint_origin_transform);
+        if (j.type != urdf::Joint::FIXED) {
+          TreeBody nb;
+          nb.name = link->name;
+          nb.parent = p.body;
+          nb.R0 = X.R;
+          nb.p0 = X.p;
+          nb.joint = makeJoint(j);
+          tree_.bodies.push_back(nb);
+          body = static_cast<int>(tree_.bodies.size()) - 1;
+          X = Placement{};
+        }
+      }
+      visitLink(*link, body, X);
+      children.assign(link->child_joints.begin(), link->child_joints.end());
+      std::sort(children.begin(), children.end(),
+                [](const auto& a, const auto& b) { return a->name < b->name; });
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({it->get(), body, X});
+    }
+  }
+
+  /// The link's frame, inertia and collision shapes, placed by X_body_link on `body`.
+  void visitLink(const urdf::Link& link, int body, const Placement& X_body_link) {
     TreeFrame frame;
     frame.name = link.name;
     frame.body = body;
@@ -300,26 +396,6 @@ class TreeBuilder {
     addInertia(tree_.bodies[idx(body)].inertia,
                linkInertia(source_, link, opt_.allow_nonphysical_inertia, tree_.warnings), X_body_link);
     addCollisions(link, body, X_body_link);
-
-    std::vector<urdf::JointSharedPtr> children(link.child_joints.begin(), link.child_joints.end());
-    std::sort(children.begin(), children.end(),
-              [](const auto& a, const auto& b) { return a->name < b->name; });
-    for (const auto& j : children) {
-      const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
-      const Placement X = X_body_link * toPlacement(j->parent_to_joint_origin_transform);
-      if (j->type == urdf::Joint::FIXED) {
-        visit(*child, body, X);
-        continue;
-      }
-      TreeBody nb;
-      nb.name = child->name;
-      nb.parent = body;
-      nb.R0 = X.R;
-      nb.p0 = X.p;
-      nb.joint = makeJoint(*j);
-      tree_.bodies.push_back(nb);
-      visit(*child, static_cast<int>(tree_.bodies.size()) - 1, Placement{});
-    }
   }
 
   TreeJoint makeJoint(const urdf::Joint& j) {
@@ -327,7 +403,8 @@ class TreeBuilder {
     out.name = j.name;
     out.kind = j.type == urdf::Joint::PRISMATIC ? JointKind::Prismatic : JointKind::Revolute;
     out.continuous = j.type == urdf::Joint::CONTINUOUS;
-    out.axis = toEigen(j.axis).normalized();
+    // (1e300, 1e300, 1e300) is brought to (1, 1, 1) first: its norm would overflow (unit_direction.hpp)
+    out.axis = (toEigen(j.axis) / directionDivisor(j.axis.x, j.axis.y, j.axis.z)).normalized();
     if (j.limits) {
       out.has_limits = true;
       out.lower = out.continuous ? -kInf : j.limits->lower;
@@ -376,11 +453,14 @@ class TreeBuilder {
       for (;;) {
         if (!seen.insert(target).second)
           fail(source_,
-               quoted("joint", j.name) + ": mimic chain forms a cycle through joint '" + target + "'");
+               quoted("joint", j.name) + ": mimic chain forms a cycle through " + quoted("joint", target));
+        if (seen.size() > kMaxMimicChain)
+          fail(source_, quoted("joint", j.name) + ": mimic chain longer than " +
+                            std::to_string(kMaxMimicChain) + " joints (the mimic chain limit)");
         auto it = byName.find(target);
         if (it == byName.end())
-          fail(source_,
-               quoted("joint", j.name) + ": mimic refers to joint '" + target + "' which is not in the tree");
+          fail(source_, quoted("joint", j.name) + ": mimic refers to " + quoted("joint", target) +
+                            " which is not in the tree");
         const TreeJoint& t = tree_.bodies[idx(it->second)].joint;
         if (!t.mimic) {
           j.q_index = t.q_index;
@@ -450,6 +530,7 @@ class TreeBuilder {
           const auto& g = static_cast<const urdf::Box&>(*c->geometry);
           if (!finite(g.dim) || g.dim.x < 0 || g.dim.y < 0 || g.dim.z < 0)
             fail(source_, el + ": invalid box size");
+          checkRange(source_, el, "box size ", g.dim, kMaxLength);
           s.kind = ShapeKind::Box;
           s.size = toEigen(g.dim);
           break;
@@ -458,6 +539,8 @@ class TreeBuilder {
           const auto& g = static_cast<const urdf::Cylinder&>(*c->geometry);
           if (!std::isfinite(g.radius) || !std::isfinite(g.length) || g.radius < 0 || g.length < 0)
             fail(source_, el + ": invalid cylinder size");
+          checkRange(source_, el, "cylinder radius", g.radius, kMaxLength);
+          checkRange(source_, el, "cylinder length", g.length, kMaxLength);
           s.kind = ShapeKind::Cylinder;
           s.size = {g.radius, g.length, 0.0};
           break;
@@ -465,28 +548,40 @@ class TreeBuilder {
         case urdf::Geometry::SPHERE: {
           const auto& g = static_cast<const urdf::Sphere&>(*c->geometry);
           if (!std::isfinite(g.radius) || g.radius < 0) fail(source_, el + ": invalid sphere radius");
+          checkRange(source_, el, "sphere radius", g.radius, kMaxLength);
           s.kind = ShapeKind::Sphere;
           s.size = {g.radius, 0.0, 0.0};
           break;
         }
         case urdf::Geometry::MESH: {
           const auto& g = static_cast<const urdf::Mesh&>(*c->geometry);
+          checkRange(source_, el, "mesh scale ", g.scale, kMaxMeshScale);
           const std::string file = resolveMeshUri(g.filename, base_dir_, opt_.package_paths);
           if (file.empty()) {
-            tree_.warnings.push_back(el + ": mesh '" + g.filename + "' not found; no collision shape");
+            tree_.warnings.push_back(el + ": mesh '" + printable(g.filename, 400) +
+                                     "' not found; no collision shape");
             continue;
           }
           MeshReadResult mesh = readMeshVertices(file);
           if (!mesh.ok) {
-            tree_.warnings.push_back(el + ": " + mesh.error + "; no collision shape");
+            tree_.warnings.push_back(el + ": " + printable(mesh.error, 400) + "; no collision shape");
             continue;
           }
           const Eigen::Vector3d scale = toEigen(g.scale);
-          for (auto& v : mesh.vertices) v = v.cwiseProduct(scale);
+          for (auto& v : mesh.vertices) {
+            v = v.cwiseProduct(scale);
+            if (!(v.cwiseAbs().maxCoeff() <= kMaxLength)) {
+              char buf[160];
+              std::snprintf(buf, sizeof buf, "a vertex at (%g, %g, %g) after scale is outside [%g, %g]",
+                            v.x(), v.y(), v.z(), -kMaxLength, kMaxLength);
+              fail(source_, el + ": mesh '" + printable(g.filename, 400) + "': " + buf);
+            }
+          }
           s.kind = ShapeKind::ConvexMesh;
           s.vertices = convexHull(mesh.vertices).vertices;
           if (s.vertices.empty()) {
-            tree_.warnings.push_back(el + ": mesh '" + g.filename + "' has no vertices; no collision shape");
+            tree_.warnings.push_back(el + ": mesh '" + printable(g.filename, 400) +
+                                     "' has no vertices; no collision shape");
             continue;
           }
           break;
@@ -512,12 +607,14 @@ std::string directoryOf(const std::string& path) {
 
 KinematicTree loadUrdfString(const std::string& xml, const std::string& source, const std::string& base_dir,
                              const LoadOptions& options) {
+  // Size, nesting and counts checked first; urdfdom parses the canonical text (urdf_preparse.hpp).
+  const std::string text = canonicalUrdf(xml, source);
   urdf::ModelInterfaceSharedPtr model;
   std::vector<std::string> parserMessages;
   {
     CapturedLog log;
     try {
-      model = urdf::parseURDF(xml);
+      model = urdf::parseURDF(text);
     } catch (const std::exception& e) {
       log.messages.push_back(e.what());
     }
@@ -528,20 +625,29 @@ KinematicTree loadUrdfString(const std::string& xml, const std::string& source, 
     std::string why;
     for (const auto& m : parserMessages) why += (why.empty() ? "" : "; ") + m;
     if (why.empty()) why = "not a valid URDF document";
-    const std::string detail = describeParseFailure(xml);
+    const std::string detail = describeParseFailure(text);
     if (!detail.empty()) why += "; " + detail;
     fail(source, "URDF parse error: " + why);
   }
+  // urdfdom's links own their children: the model, released from a root after its chain, would
+  // release the chain recursively. Its links are unlinked first, whatever build() does.
+  struct Unlink {
+    urdf::ModelInterface& m;
+    ~Unlink() {
+      for (auto& entry : m.links_) {
+        entry.second->child_links.clear();
+        entry.second->child_joints.clear();
+      }
+    }
+  } unlink{*model};
   TreeBuilder builder(*model, source, base_dir, options);
   return builder.build();
 }
 
 KinematicTree loadUrdfFile(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError(path + ": cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return loadUrdfString(ss.str(), path, directoryOf(path), options);
+  const BoundedRead file = readFileAtMost(path, kMaxUrdfBytes, "URDF ");
+  if (!file.ok) throw ModelError(path + (file.too_large ? ": " : ": cannot open file: ") + file.error);
+  return loadUrdfString(file.data, path, directoryOf(path), options);
 }
 
 }  // namespace mrqp::gen
