@@ -1,5 +1,6 @@
 // The ArmDriver against mrqp-drive-emu's emulator on a SimBus: boot, enable, closed-loop CSP
-// tracking by the joint model, heartbeat loss, YAML errors.
+// tracking by the joint model, heartbeat loss, YAML errors (every value checked for type, finiteness
+// and range: the hostile inputs of a fuzzing campaign among them), the vendor profile.
 #include <catch2/catch.hpp>
 #include <emu_sim.hpp>
 #include <mrqp/drivers/arm_driver.hpp>
@@ -11,6 +12,8 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 using namespace mrqp::drivers;
 using namespace mrqp::drive_emu;
@@ -184,13 +187,13 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   }
   // Errors are "FILE:LINE: FIELD: message", as for every YAML file of mrqp (control/scene/yaml_reader).
   CHECK_FALSE(load_config(bad, &c, &err));
-  CHECK(err == bad + ":2: nodes[0].inertia: expected a number > 0, got -1");
+  CHECK(err == bad + ":2: nodes[0].inertia: expected a number in (0, 1000000], got -1");
   {
     std::ofstream f(bad);
     f << "nodes:\n  - {node: 3, damping: abc}\n";
   }
   CHECK_FALSE(load_config(bad, &c, &err));
-  CHECK(err == bad + ":2: nodes[0].damping: expected a number >= 0, got \"abc\"");
+  CHECK(err == bad + ":2: nodes[0].damping: expected a number, got \"abc\"");
   {
     std::ofstream f(bad);
     f << "nodes: [1, 1]\n";
@@ -223,6 +226,115 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   CHECK(err == bad + ":3: nodes[1]: missing required field 'node'");
   std::remove(good.c_str());
   std::remove(bad.c_str());
+}
+
+TEST_CASE("drive emulator: hostile configurations are refused with FILE:LINE: FIELD, never a crash",
+          "[drive_emu]") {
+  const std::string bad = "drive_emu_hostile.yaml";
+  // Each: the file, then the exact error (limits of drive_emu.hpp, limits::).
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"nodes: [1]\njoint: 1\n", ":2: joint: expected a map, got 1"},
+      {"nodes: [1]\nstep_ms: 1e-6\n", ":2: step_ms: expected a number in [0.01, 100], got 1e-6"},
+      {"nodes:\n  - {node: 1, faults: {emcy_at: 1e300}}\n",
+       ":2: nodes[0].faults.emcy_at: expected a number in [0, 1000000], got 1e300"},
+      {"nodes: [1]\nboot_delay_ms: .nan\n", ":2: boot_delay_ms: expected a finite number, got .nan"},
+      {"nodes: [1]\nrated_torque: 4294968\n",
+       ":2: rated_torque: expected a number in [0.001, 4294967.295], got 4294968"},
+      {"nodes: [1]\nduration: 1e400\n", ":2: duration: expected a finite number, got 1e400"},
+      {"nodes: [1]\nboot_delay_ms: -1\n", ":2: boot_delay_ms: expected a number in [0, 60000], got -1"},
+      {"nodes:\n  - {node: 1, initial_position: 1e9}\n",
+       ":2: nodes[0].initial_position: expected a number in [-1000, 1000], got 1e9"},
+      {"nodes: [1]\nprofile: picky\n",
+       ":2: profile: expected lenient, strict or a map of switches, got \"picky\""},
+      {"nodes: [1]\nprofile: {tpdo_count: 5}\n",
+       ":2: profile.tpdo_count: expected an integer in [1, 4], got 5"},
+      {"nodes: [1]\nprofile: {sync_timeout_factor: 0.5}\n",
+       ":2: profile.sync_timeout_factor: expected 0 (no SYNC timeout) or a factor in [1, 100], got 0.5"},
+      {"nodes: [1]\nprofile: {vendor_id: 0x100000000}\n",
+       ":2: profile.vendor_id: expected an integer in [0, 4294967295], got \"0x100000000\""},
+      {"nodes: 1\n", ":1: nodes: expected a list, got 1"},
+      {"[]\n", ":1: (top level): expected a map, got a list of 0"},
+  };
+  for (const auto& [text, expected] : cases) {
+    {
+      std::ofstream f(bad);
+      f << text;
+    }
+    EmuConfig c;
+    std::string err;
+    INFO(text);
+    CHECK_FALSE(load_config(bad, &c, &err));
+    CHECK(err == bad + expected);
+  }
+  // Command-line overrides go through the same limits.
+  EmuConfig c = three_nodes();
+  std::string err;
+  c.duration_s = 1e300;
+  CHECK_FALSE(validate_config(c, "command line", &err));
+  CHECK(err == "command line: duration: must be in [0, 1e6] s");
+  c = three_nodes();
+  CHECK_FALSE(apply_fault_switch("emcy", "1@1e300", &c, &err));
+  CHECK(err == "--emcy 1@1e300: bad time: expected seconds in [0, 1e6]");
+  std::remove(bad.c_str());
+}
+
+TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive booted by the master",
+          "[drive_emu]") {
+  const std::string file = "drive_emu_profile.yaml";
+  {
+    std::ofstream f(file);
+    f << "nodes: [1, 2]\nrated_torque: 10\n"
+         "profile: {base: strict, tpdo_count: 3, vendor_id: 0x1234, comm_error_behaviour: 2}\n";
+  }
+  EmuConfig c;
+  std::string err;
+  REQUIRE(load_config(file, &c, &err));
+  const auto strict = mrqp::emulation::VendorProfile::strict();
+  CHECK(c.profile.tpdo_count == 3u);
+  CHECK(c.profile.vendor_id == 0x1234u);
+  CHECK(c.profile.comm_error_behaviour == 2u);
+  CHECK(c.profile.rtr_check == strict.rtr_check);
+  CHECK(c.profile.sync_timeout_factor == strict.sync_timeout_factor);
+  CHECK(c.profile.statusword_bits);
+  const std::string text = describe_config(c);
+  CHECK(text.find("3 TPDO(s)") != std::string::npos);
+  CHECK(text.find("SYNC timeout 1.5 x 0x1006 (0x1029:01 = 2)") != std::string::npos);
+  CHECK(text.find("node 2: 524288 increments/rev, rated 10 N m") != std::string::npos);
+  std::remove(file.c_str());
+
+  // The master boots the strict emulated drives (TPDO3/4 absent: 2 aborts tolerated), streams.
+  EmuConfig e = three_nodes();
+  e.profile = strict;
+  Bench b(e);
+  REQUIRE(b.arm != nullptr);
+  REQUIRE(b.boot_and_enable());
+  for (int k = 0; k < 100; ++k) {
+    const FaultReport& r = b.cycle();
+    REQUIRE(r.flags == 0u);
+  }
+  for (std::size_t j = 0; j < 3; ++j) {
+    CHECK(b.arm->faults().devices[j].tolerated_aborts == 2u);
+  }
+  // A SYNC gap of 4 cycles: each drive reports EMCY 0x8100 and leaves Operational.
+  b.t += 4 * b.config.cycle_period;
+  for (int k = 0; k < 20; ++k) b.cycle();
+  for (std::size_t j = 0; j < 3; ++j) {
+    CHECK(b.emu->emulator().comm_errors(j) == 1u);
+    CHECK(b.emu->emulator().nmt(j) == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+    CHECK(b.arm->faults().devices[j].emcy_code == 0x8100);
+  }
+  CHECK(b.arm->request_recovery(b.t) == 3u);
+  for (int k = 0; k < 200 && !b.arm->ready(); ++k) b.cycle();
+  CHECK(b.arm->ready());
+  // Safe exit: every emulated drive stopped and pre-operational.
+  b.arm->request_safe_exit(b.t);
+  for (int k = 0; k < 200 && !b.arm->safe_exit_done(); ++k) b.cycle();
+  b.cycle();
+  CHECK(b.arm->safe_exit_done());
+  for (std::size_t j = 0; j < 3; ++j) {
+    CHECK(b.emu->emulator().state(j) == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
+    CHECK(b.emu->emulator().nmt(j) == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+  }
 }
 
 TEST_CASE("drive emulator: corrupted frames are counted by the driver", "[drive_emu]") {

@@ -11,18 +11,21 @@ using mrqp::emulation::EmulatedCia402Drive;
 
 /// One node: the emulated drive and its joint.
 struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
-  Drive(DriveEmulator& owner, const EmuNode& node, TimeNs boot_delay) noexcept
-      : emu(owner), cfg(node), drive(*this, options(node, boot_delay)) {
+  Drive(DriveEmulator& owner, const EmuNode& node, TimeNs boot_delay,
+        const mrqp::emulation::VendorProfile& profile) noexcept
+      : emu(owner), cfg(node), drive(*this, options(node, boot_delay, profile)) {
     q = cfg.joint.initial_position;
     target_position = q;
     drive.stop_heartbeat_at(cfg.faults.heartbeat_stop_at);
   }
 
-  static EmulatedCia402Drive::Options options(const EmuNode& node, TimeNs boot_delay) noexcept {
+  static EmulatedCia402Drive::Options options(const EmuNode& node, TimeNs boot_delay,
+                                              const mrqp::emulation::VendorProfile& profile) noexcept {
     EmulatedCia402Drive::Options o;
     o.node = node.node;
     o.boot_delay = boot_delay;
     o.response_delay = 0;
+    o.profile = profile;
     return o;
   }
 
@@ -71,7 +74,7 @@ DriveEmulator::DriveEmulator(const EmuConfig& config, FrameSink& sink) : cfg_(co
   rng_ = 0x9E3779B97F4A7C15ull ^ config.seed;
   drives_.reserve(config.nodes.size());
   for (const EmuNode& node : config.nodes) {
-    drives_.push_back(std::make_unique<Drive>(*this, node, config.boot_delay));  // power-on
+    drives_.push_back(std::make_unique<Drive>(*this, node, config.boot_delay, config.profile));  // power-on
   }
 }
 
@@ -104,6 +107,7 @@ std::size_t DriveEmulator::size() const noexcept { return drives_.size(); }
 double DriveEmulator::position(std::size_t i) const noexcept { return drives_[i]->q; }
 mrqp_fw_cia402_state DriveEmulator::state(std::size_t i) const noexcept { return drives_[i]->drive.state(); }
 mrqp_fw_nmt_state DriveEmulator::nmt(std::size_t i) const noexcept { return drives_[i]->drive.nmt(); }
+unsigned DriveEmulator::comm_errors(std::size_t i) const noexcept { return drives_[i]->drive.comm_errors(); }
 
 TimeNs DriveEmulator::next_event() const noexcept {
   TimeNs t = next_step_;

@@ -54,15 +54,35 @@ struct EmuConfig {
   double corrupt_fraction = 0.0;  ///< of the frames the emulator sends, truncated to 1 byte
   std::uint32_t seed = 1;
   double duration_s = 0.0;  ///< 0: run until signalled
+  /// How strict every emulated drive is (YAML `profile`: lenient, strict, or a map of switches).
+  mrqp::emulation::VendorProfile profile = mrqp::emulation::VendorProfile::lenient();
 };
 
-/// Loads a YAML configuration; on error returns false and "<file>: <field>: <problem>".
+/// Limits of the configuration (checked by load_config and validate_config).
+namespace limits {
+inline constexpr double kStepMsMin = 0.01;  ///< physics step
+inline constexpr double kStepMsMax = 100.0;
+inline constexpr double kBootDelayMsMax = 60000.0;      ///< reset -> boot-up
+inline constexpr double kTimeSMax = 1.0e6;              ///< duration and fault times (s), about 11.6 days
+inline constexpr double kRatedTorqueMax = 4294967.295;  ///< N m: 0x6076 is u32 mN m
+inline constexpr double kRatedTorqueMin = 0.001;        ///< N m: at least 1 mN m
+inline constexpr double kPhysicalMax = 1.0e6;           ///< inertia, damping, torque limit
+inline constexpr double kGainMax = 1.0e9;               ///< kp, kd
+inline constexpr double kPositionMax = 1000.0;          ///< |initial_position| in rad
+}  // namespace limits
+
+/// Loads a YAML configuration; on error returns false and "FILE:LINE: FIELD: message" (nothing
+/// thrown, whatever the file holds).
 bool load_config(const std::string& path, EmuConfig* config, std::string* error);
-/// Parses "N@T" / "N@T:code" (T in seconds) fault switches of the command line into `config`.
+/// Parses "N@T" / "N@T:code" (T in seconds, 0..limits::kTimeSMax) fault switches of the command
+/// line into `config`.
 bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* config,
                         std::string* error);
-/// Validates the configuration (node ids unique 1..127, physical parameters positive).
+/// Validates the configuration (node ids unique 1..127, every value finite and within limits::),
+/// e.g. after command-line overrides.
 bool validate_config(const EmuConfig& config, const std::string& origin, std::string* error);
+/// What the configuration emulates, one line per node and the profile (for --check).
+std::string describe_config(const EmuConfig& config);
 
 class FrameSink {
  public:
@@ -99,6 +119,7 @@ class DriveEmulator {
   double position(std::size_t i) const noexcept;  ///< rad, physical model
   mrqp_fw_cia402_state state(std::size_t i) const noexcept;
   mrqp_fw_nmt_state nmt(std::size_t i) const noexcept;
+  unsigned comm_errors(std::size_t i) const noexcept;  ///< SYNC timeouts of drive i
   const EmuStats& stats() const noexcept { return stats_; }
 
  private:

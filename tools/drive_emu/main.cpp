@@ -1,13 +1,17 @@
-// mrqp-drive-emu: emulated CiA 402 drives on a SocketCAN interface (README.md).
+// mrqp-drive-emu: emulated CiA 402 drives on a SocketCAN interface (README.md). The configuration
+// and the command line are validated before the bus is opened; --check validates, prints what
+// would be emulated and exits. Any failure is one error line and a non-zero exit.
 #include <mrqp/drivers/socketcan_bus.hpp>
 
 #include <poll.h>
 #include <signal.h>
 #include <time.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <string>
 
 #include "drive_emu.hpp"
@@ -36,21 +40,50 @@ class BusSink final : public FrameSink {
 
 void usage() {
   std::fprintf(stderr,
-               "usage: mrqp-drive-emu --config FILE.yaml [--interface IF] [--duration S]\n"
+               "usage: mrqp-drive-emu --config FILE.yaml [--check] [--interface IF] [--duration S]\n"
                "       [--stop-heartbeat N@T] [--emcy N@T[:code]] [--saturate N@T]\n"
-               "       [--drop FRACTION] [--corrupt FRACTION] [--seed N]\n"
-               "  T in seconds from the start of the emulator.\n");
+               "       [--drop FRACTION] [--corrupt FRACTION] [--seed N] [--profile lenient|strict]\n"
+               "  T in seconds from the start of the emulator. --check: validate, print what would be\n"
+               "  emulated, exit 0.\n");
 }
+
+/// The whole of `s` as a finite number; false otherwise.
+bool parse_double(const std::string& s, double* out) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v)) {
+    return false;
+  }
+  *out = v;
+  return true;
+}
+
+int run(int argc, char** argv);
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mrqp-drive-emu: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "mrqp-drive-emu: unexpected error\n");
+  }
+  return 2;
+}
+
+namespace {
+
+int run(int argc, char** argv) {
   std::string config_path;
   std::string interface;
   double duration = -1.0;
   double drop = -1.0;
   double corrupt = -1.0;
   long seed = -1;
+  bool check = false;
+  std::string profile;
   std::vector<std::pair<std::string, std::string>> switches;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -65,14 +98,32 @@ int main(int argc, char** argv) {
       config_path = value();
     } else if (a == "--interface") {
       interface = value();
-    } else if (a == "--duration") {
-      duration = std::atof(value().c_str());
-    } else if (a == "--drop") {
-      drop = std::atof(value().c_str());
-    } else if (a == "--corrupt") {
-      corrupt = std::atof(value().c_str());
-    } else if (a == "--seed") {
-      seed = std::atol(value().c_str());
+    } else if (a == "--duration" || a == "--drop" || a == "--corrupt" || a == "--seed") {
+      const std::string v = value();
+      double x = 0.0;
+      if (!parse_double(v, &x) || x < 0.0) {
+        std::fprintf(stderr, "mrqp-drive-emu: %s: expected a number >= 0, got '%s'\n", a.c_str(), v.c_str());
+        return 2;
+      }
+      if (a == "--seed") {
+        if (x > 2147483647.0 || x != std::floor(x)) {
+          std::fprintf(stderr, "mrqp-drive-emu: --seed: expected an integer 0..2147483647, got '%s'\n",
+                       v.c_str());
+          return 2;
+        }
+        seed = static_cast<long>(x);
+      } else {
+        (a == "--duration" ? duration : a == "--drop" ? drop : corrupt) = x;
+      }
+    } else if (a == "--check") {
+      check = true;
+    } else if (a == "--profile") {
+      profile = value();
+      if (profile != "lenient" && profile != "strict") {
+        std::fprintf(stderr, "mrqp-drive-emu: --profile: expected lenient or strict, got '%s'\n",
+                     profile.c_str());
+        return 2;
+      }
     } else if (a == "--stop-heartbeat" || a == "--emcy" || a == "--saturate") {
       switches.emplace_back(a.substr(2), value());
     } else if (a == "--help" || a == "-h") {
@@ -109,6 +160,10 @@ int main(int argc, char** argv) {
   if (seed >= 0) {
     cfg.seed = static_cast<std::uint32_t>(seed);
   }
+  if (!profile.empty()) {
+    cfg.profile = profile == "strict" ? mrqp::emulation::VendorProfile::strict()
+                                      : mrqp::emulation::VendorProfile::lenient();
+  }
   for (const auto& s : switches) {
     if (!apply_fault_switch(s.first, s.second, &cfg, &err)) {
       std::fprintf(stderr, "mrqp-drive-emu: %s\n", err.c_str());
@@ -118,6 +173,11 @@ int main(int argc, char** argv) {
   if (!validate_config(cfg, "command line", &err)) {
     std::fprintf(stderr, "mrqp-drive-emu: %s\n", err.c_str());
     return 2;
+  }
+  if (check) {
+    std::printf("mrqp-drive-emu: %s: OK, %zu node(s)\n%s", config_path.c_str(), cfg.nodes.size(),
+                describe_config(cfg).c_str());
+    return 0;
   }
 
   mrqp::drivers::SocketCanBus bus;
@@ -162,8 +222,12 @@ int main(int argc, char** argv) {
       static_cast<unsigned long long>(st.corrupted), static_cast<unsigned long long>(st.syncs),
       static_cast<unsigned long long>(st.rpdos), sink.failed);
   for (std::size_t i = 0; i < emu.size(); ++i) {
-    std::printf("  node %u: nmt=0x%02x cia402=%d position=%.4f rad\n", cfg.nodes[i].node,
-                static_cast<unsigned>(emu.nmt(i)), static_cast<int>(emu.state(i)), emu.position(i));
+    std::printf("  node %u: nmt=0x%02x cia402=%d (%s) position=%.4f rad comm_errors=%u%s\n",
+                cfg.nodes[i].node, static_cast<unsigned>(emu.nmt(i)), static_cast<int>(emu.state(i)),
+                mrqp_fw_cia402_state_str(emu.state(i)), emu.position(i), emu.comm_errors(i),
+                emu.state(i) == MRQP_FW_CIA402_OPERATION_ENABLED ? " LEFT ENABLED" : "");
   }
   return 0;
 }
+
+}  // namespace

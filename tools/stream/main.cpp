@@ -1,13 +1,18 @@
 // mrqp-stream: streams a sine per joint through the ArmDriver on a SocketCAN interface at a fixed
 // rate (clock_nanosleep, absolute deadlines) for N cycles, checks the feedback, prints a summary
-// and exits non-zero on failure (README.md).
+// and exits non-zero on failure (README.md). Whatever ends it (the last cycle, SIGINT/SIGTERM, a
+// failed boot or enable), the drives are left stopped: ArmDriver::request_safe_exit (quick stop or
+// disable voltage, then NMT pre-operational or stop).
 #include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/drivers/bus_router.hpp>
+#include <mrqp/drivers/canopen/canopen_text.hpp>
 #include <mrqp/drivers/socketcan_bus.hpp>
 
+#include <signal.h>
 #include <time.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,7 +42,38 @@ struct Options {
   int heartbeat_ms = 100;
   int feedback_missing_cycles = 5;
   bool quiet = false;
+  bool recover = false;  ///< RecoveryPolicy::Automatic
+  bool tpdo_rtr_allowed = false;
+  long comm_cycle_us = 0;  ///< 0x1006; 0: the cycle period
+  ExitStop exit_stop = ExitStop::QuickStop;
+  ExitNmt exit_nmt = ExitNmt::PreOperational;
+  unsigned long device_type = 0, vendor_id = 0, product_code = 0;
 };
+
+volatile sig_atomic_t g_stop = 0;
+void on_signal(int) { g_stop = 1; }
+
+/// A fault seen during the run, kept for the report after the loop (no printing in the cycle).
+struct FaultEvent {
+  long cycle = 0;
+  std::size_t drive = 0;
+  DeviceFaults faults;
+};
+
+/// An unsigned number (decimal or 0x hex) within [0, max]; false if it is not one.
+bool parse_u32(const std::string& s, unsigned long max, unsigned long* out) {
+  if (s.empty() || s[0] == '-') {
+    return false;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long v = std::strtoul(s.c_str(), &end, 0);
+  if (*end != '\0' || errno != 0 || v > max) {
+    return false;
+  }
+  *out = v;
+  return true;
+}
 
 void usage() {
   std::fprintf(stderr,
@@ -46,6 +82,9 @@ void usage() {
                "       [--heartbeat-ms MS] [--heartbeat-timeout-ms MS] [--sdo-timeout-ms MS] "
                "[--feedback-missing-cycles N]\n"
                "       [--expect-heartbeat-loss NODE] [--quiet]\n"
+               "       [--recover] [--tpdo-rtr-allowed] [--comm-cycle-us US]\n"
+               "       [--exit-stop quick-stop|disable] [--exit-nmt pre-operational|stopped|unchanged]\n"
+               "       [--device-type N] [--vendor-id N] [--product-code N]\n"
                "--config reads nodes and scales from a mrqp-drive-emu YAML file.\n");
 }
 
@@ -125,6 +164,47 @@ int main(int argc, char** argv) {
       o.feedback_missing_cycles = std::atoi(value().c_str());
     } else if (a == "--quiet") {
       o.quiet = true;
+    } else if (a == "--recover") {
+      o.recover = true;
+    } else if (a == "--tpdo-rtr-allowed") {
+      o.tpdo_rtr_allowed = true;
+    } else if (a == "--comm-cycle-us") {
+      unsigned long v = 0;
+      if (!parse_u32(value(), 0xFFFFFFFFul, &v)) {
+        std::fprintf(stderr, "mrqp-stream: --comm-cycle-us: expected microseconds 0..4294967295\n");
+        return 2;
+      }
+      o.comm_cycle_us = static_cast<long>(v);
+    } else if (a == "--device-type" || a == "--vendor-id" || a == "--product-code") {
+      unsigned long v = 0;
+      if (!parse_u32(value(), 0xFFFFFFFFul, &v)) {
+        std::fprintf(stderr, "mrqp-stream: %s: expected a 32-bit unsigned number (0x... for hex)\n",
+                     a.c_str());
+        return 2;
+      }
+      (a == "--device-type" ? o.device_type : a == "--vendor-id" ? o.vendor_id : o.product_code) = v;
+    } else if (a == "--exit-stop") {
+      const std::string v = value();
+      if (v == "quick-stop") {
+        o.exit_stop = ExitStop::QuickStop;
+      } else if (v == "disable") {
+        o.exit_stop = ExitStop::DisableVoltage;
+      } else {
+        std::fprintf(stderr, "mrqp-stream: --exit-stop: expected quick-stop or disable\n");
+        return 2;
+      }
+    } else if (a == "--exit-nmt") {
+      const std::string v = value();
+      if (v == "pre-operational") {
+        o.exit_nmt = ExitNmt::PreOperational;
+      } else if (v == "stopped") {
+        o.exit_nmt = ExitNmt::Stopped;
+      } else if (v == "unchanged") {
+        o.exit_nmt = ExitNmt::Unchanged;
+      } else {
+        std::fprintf(stderr, "mrqp-stream: --exit-nmt: expected pre-operational, stopped or unchanged\n");
+        return 2;
+      }
     } else if (a == "--help" || a == "-h") {
       usage();
       return 0;
@@ -157,6 +237,9 @@ int main(int argc, char** argv) {
       ArmDriveConfig d;
       d.node = n.node;
       d.scale = n.scale;
+      d.device_type = static_cast<std::uint32_t>(o.device_type);
+      d.vendor_id = static_cast<std::uint32_t>(o.vendor_id);
+      d.product_code = static_cast<std::uint32_t>(o.product_code);
       cfg.drives.push_back(d);
     }
   } else {
@@ -166,6 +249,9 @@ int main(int argc, char** argv) {
     for (std::uint8_t n : o.nodes) {
       ArmDriveConfig d;
       d.node = n;
+      d.device_type = static_cast<std::uint32_t>(o.device_type);
+      d.vendor_id = static_cast<std::uint32_t>(o.vendor_id);
+      d.product_code = static_cast<std::uint32_t>(o.product_code);
       cfg.drives.push_back(d);
     }
   }
@@ -176,6 +262,12 @@ int main(int argc, char** argv) {
   cfg.boot_timeout = std::max(cfg.boot_timeout, 50 * cfg.sdo_timeout);
   cfg.enable_timeout = std::max(cfg.enable_timeout, 10 * cfg.sdo_timeout);
   cfg.feedback_missing_cycles = static_cast<std::uint32_t>(o.feedback_missing_cycles);
+  cfg.recovery = o.recover ? RecoveryPolicy::Automatic : RecoveryPolicy::Manual;
+  cfg.tpdo_rtr_allowed = o.tpdo_rtr_allowed;
+  cfg.comm_cycle_period_us = static_cast<std::uint32_t>(o.comm_cycle_us);
+  cfg.exit_stop = o.exit_stop;
+  cfg.exit_nmt = o.exit_nmt;
+  cfg.exit_timeout = std::max(cfg.exit_timeout, 20 * cfg.cycle_period);
 
   SocketCanBus bus;
   SocketCanConfig sc;
@@ -205,6 +297,9 @@ int main(int argc, char** argv) {
     return 2;
   }
 
+  signal(SIGINT, on_signal);
+  signal(SIGTERM, on_signal);
+
   // Setup done: everything below is the cycle (no allocation in the loop).
   std::vector<double> q0(n, 0.0);
   std::vector<double> sent(n, 0.0);
@@ -218,6 +313,22 @@ int main(int argc, char** argv) {
   std::uint32_t all_flags = 0;
   std::uint64_t frames_sent = 0;
   TimeNs worst_late = 0;
+  std::vector<FaultEvent> events(64);  // the first faults of each kind per drive, in order
+  std::size_t event_count = 0;
+  std::vector<std::uint32_t> reported(n, 0);
+  long cycle_no = 0;
+  auto note = [&](const FaultReport& r) {  // real-time safe: copies into the preallocated events
+    for (std::size_t j = 0; j < n && j < r.device_count; ++j) {
+      const std::uint32_t fresh =
+          r.devices[j].flags & ~reported[j] &
+          (fault::kEmcy | fault::kStateMismatch | fault::kBootFailed | fault::kTimeout |
+           fault::kHeartbeatLost | fault::kDeviceFault | fault::kRecovering);
+      if (fresh != 0u && event_count < events.size()) {
+        events[event_count++] = FaultEvent{cycle_no, j, r.devices[j]};
+      }
+      reported[j] |= fresh;
+    }
+  };
 
   timespec next;
   clock_gettime(CLOCK_MONOTONIC, &next);
@@ -243,27 +354,81 @@ int main(int argc, char** argv) {
   while (arm->phase() != ArmPhase::Running && arm->phase() != ArmPhase::Failed && boot_cycles < boot_limit) {
     now = cycle_start();
     router.poll(now);
-    all_flags |= arm->update(now).flags;
+    const FaultReport& r = arm->update(now);
+    all_flags |= r.flags;
+    note(r);
     frames_sent += arm->transmit(now);
     ++boot_cycles;
+    ++cycle_no;
+    if (g_stop != 0) {
+      break;
+    }
   }
+
+  // The safe exit: run the cycle until the drives are stopped and left in the NMT state asked for.
+  auto safe_exit = [&]() -> bool {
+    arm->request_safe_exit(now);
+    const long limit =
+        static_cast<long>(static_cast<double>(cfg.exit_timeout) / static_cast<double>(period)) + 20;
+    long k = 0;
+    while (!arm->safe_exit_done() && k < limit) {
+      now = cycle_start();
+      router.poll(now);
+      (void)arm->update(now);
+      frames_sent += arm->transmit(now);
+      ++k;
+    }
+    // Let the NMT commands reach the bus before the socket closes.
+    now = cycle_start();
+    router.poll(now);
+    (void)arm->update(now);
+    std::printf("mrqp-stream: safe exit: %s after %ld cycles (%s, then %s)\n",
+                arm->safe_exit_done() ? "drives stopped" : "NOT completed", k,
+                cfg.exit_stop == ExitStop::QuickStop ? "quick stop" : "disable voltage",
+                cfg.exit_nmt == ExitNmt::PreOperational ? "NMT pre-operational"
+                : cfg.exit_nmt == ExitNmt::Stopped      ? "NMT stop"
+                                                        : "NMT state unchanged");
+    return arm->safe_exit_done();
+  };
+  auto print_events = [&]() {
+    for (std::size_t e = 0; e < event_count; ++e) {
+      std::printf("mrqp-stream: cycle %ld: drive %zu: %s\n", events[e].cycle, events[e].drive,
+                  describe_device_faults(events[e].faults).c_str());
+    }
+  };
+  auto print_faults = [&](const FaultReport& r) {
+    const std::string text = describe_faults(r, "drive");
+    if (!text.empty()) {
+      std::printf("mrqp-stream: faults:\n%s", text.c_str());
+    }
+  };
+
   if (arm->phase() != ArmPhase::Running) {
     std::printf("mrqp-stream: FAIL: boot ended in phase %s after %ld cycles, flags %s\n",
                 arm_phase_str(arm->phase()), boot_cycles, fault_flags_str(all_flags).c_str());
+    print_faults(arm->faults());
+    print_events();
+    safe_exit();
     return 1;
   }
   arm->request_enable(now);
   long enable_cycles = 0;
-  while (!arm->all_enabled() && enable_cycles < boot_limit) {
+  while (!arm->all_enabled() && enable_cycles < boot_limit && g_stop == 0) {
     now = cycle_start();
     router.poll(now);
-    all_flags |= arm->update(now).flags;
+    const FaultReport& r = arm->update(now);
+    all_flags |= r.flags;
+    note(r);
     frames_sent += arm->transmit(now);
     ++enable_cycles;
+    ++cycle_no;
   }
   if (!arm->all_enabled()) {
-    std::printf("mrqp-stream: FAIL: drives not enabled after %ld cycles, flags %s\n", enable_cycles,
-                fault_flags_str(all_flags).c_str());
+    std::printf("mrqp-stream: FAIL: drives not enabled after %ld cycles, flags %s%s\n", enable_cycles,
+                fault_flags_str(all_flags).c_str(), g_stop != 0 ? " (signalled)" : "");
+    print_faults(arm->faults());
+    print_events();
+    safe_exit();
     return 1;
   }
   std::printf("mrqp-stream: booted in %ld cycles, enabled in %ld cycles; streaming %ld cycles at %.1f Hz\n",
@@ -278,11 +443,15 @@ int main(int argc, char** argv) {
                              fault::kTimeout | fault::kHeartbeatLost | fault::kStateMismatch | fault::kBusOff;
   const TimeNs stream_start = now;
   const double w = 2.0 * M_PI * o.frequency;
-  for (long k = 0; k < o.cycles; ++k) {
+  long streamed = 0;
+  for (long k = 0; k < o.cycles && g_stop == 0; ++k) {
     now = cycle_start();
     router.poll(now);
     const FaultReport& r = arm->update(now);
     all_flags |= r.flags;
+    note(r);
+    ++cycle_no;
+    ++streamed;
     std::uint32_t cycle_fail = 0;
     for (std::size_t j = 0; j < n; ++j) {
       const DeviceFaults& df = r.devices[j];
@@ -322,26 +491,42 @@ int main(int argc, char** argv) {
     }
     frames_sent += arm->transmit(now);
   }
+  const bool signalled = g_stop != 0;
+  const DeviceFaults* fin_devices = arm->faults().devices;
+  std::vector<DeviceFaults> fin_copy(fin_devices, fin_devices + n);  // before the exit rewrites them
+  const BusFaults fin_bus = arm->faults().buses[0];
+  const SyncStats sync = arm->sync_stats(0);
+  const bool exited = safe_exit();
   // Summary.
-  const FaultReport& fin = arm->faults();
   std::printf(
       "mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
-      o.cycles, o.rate, static_cast<unsigned long long>(frames_sent),
+      streamed, o.rate, static_cast<unsigned long long>(frames_sent),
       static_cast<unsigned long long>(overruns), static_cast<double>(worst_late) / 1000.0);
   std::uint64_t emcy_total = 0;
   std::uint64_t corrupt_total = 0;
   for (std::size_t j = 0; j < n; ++j) {
-    const DeviceFaults& df = fin.devices[j];
+    const DeviceFaults& df = fin_copy[j];
     emcy_total += df.emcy_count;
     corrupt_total += df.corrupt_frames;
     std::printf(
         "mrqp-stream: node %u: max_error=%.5f rad emcy_count=%u emcy_code=0x%04x corrupt_frames=%u "
-        "heartbeat_lost_cycles=%llu heartbeat_lost_at_ms=%.1f\n",
+        "heartbeat_lost_cycles=%llu heartbeat_lost_at_ms=%.1f tolerated_aborts=%u recoveries=%u nmt=%s\n",
         cfg.drives[j].node, max_err[j], df.emcy_count, df.emcy_code, df.corrupt_frames,
         static_cast<unsigned long long>(hb_lost[j]),
-        hb_lost_at[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at[j]) / 1e6);
+        hb_lost_at[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at[j]) / 1e6, df.tolerated_aborts,
+        df.recoveries, nmt_state_str(df.nmt_state));
   }
-  const BusFaults& bf = fin.buses[0];
+  std::printf(
+      "mrqp-stream: sync: syncs=%llu intervals=%llu period_us=%.1f min_us=%.1f max_us=%.1f "
+      "max_jitter_us=%.1f "
+      "mean_abs_jitter_us=%.1f over_%.1fx=%llu (%s)\n",
+      static_cast<unsigned long long>(sync.syncs), static_cast<unsigned long long>(sync.intervals),
+      static_cast<double>(sync.period) / 1e3, static_cast<double>(sync.min_interval) / 1e3,
+      static_cast<double>(sync.max_interval) / 1e3, static_cast<double>(sync.max_jitter) / 1e3,
+      sync.mean_abs_jitter_ns / 1e3, sync.timeout_factor, static_cast<unsigned long long>(sync.over_timeout),
+      bus.echoes_own() ? "timed on the TX echo" : "timed at transmit");
+  print_events();
+  const BusFaults& bf = fin_bus;
   std::printf(
       "mrqp-stream: counters: emcy=%llu corrupt_frames=%llu unknown_frames=%llu rejected_frames=%llu "
       "bus_error_events=%llu tx_queue_full=%llu\n",
@@ -350,7 +535,10 @@ int main(int argc, char** argv) {
       static_cast<unsigned long long>(bf.error_events_total),
       static_cast<unsigned long long>(bf.tx_queue_full_total));
   std::printf("mrqp-stream: flags seen: %s\n", fault_flags_str(all_flags).c_str());
-  bool ok = fail_cycles == 0;
+  bool ok = fail_cycles == 0 && exited && !signalled;
+  if (signalled) {
+    std::printf("mrqp-stream: FAIL: stopped by a signal after %ld of %ld cycles\n", streamed, o.cycles);
+  }
   if (!ok) {
     std::printf("mrqp-stream: FAIL: %llu cycle(s) failed: %s\n", static_cast<unsigned long long>(fail_cycles),
                 fault_flags_str(fail_flags).c_str());
