@@ -413,3 +413,80 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
   CHECK(board_host.servo[7].enabled);
   CHECK(mit_host.servo[2].kp == Approx(20.0).margin(0.2));
 }
+
+TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "[drivers][realtime]") {
+  // Two strict drives (vendor_profile.hpp) with a SYNC timeout; the master with TX echo. Boot and
+  // enable outside the count, then counted: a SYNC gap (EMCY 0x8100, pre-operational), 50 failing
+  // cycles, the recovery, a reboot and its reconfiguration, the safe exit.
+  const TimeNs period = milliseconds(1);
+  SimBus bus;
+  SimNodeConfig mc;
+  mc.rx_queue = 1024;
+  mc.echo_own = true;
+  SimNode* master = bus.add_node(mc);
+  std::vector<std::unique_ptr<drvtest::FakeCia402Drive>> drives;
+  ArmConfig ac;
+  ac.cycle_period = period;
+  ac.producer_heartbeat_ms = 10;
+  ac.heartbeat_timeout = milliseconds(50);
+  for (std::uint8_t n = 1; n <= 2; ++n) {
+    drvtest::FakeDriveOptions o;
+    o.node = n;
+    o.profile = mrqp::emulation::VendorProfile::strict();
+    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*bus.add_node(SimNodeConfig{}), o));
+    ArmDriveConfig d;
+    d.node = n;
+    d.device_type = 0x192;
+    ac.drives.push_back(d);
+  }
+  BusRouter router(*master);
+  std::string err;
+  auto arm = ArmDriver::create({&router}, ac, &err);
+  REQUIRE(arm != nullptr);
+  TimeNs t = 0;
+  auto cycle = [&]() {
+    bus.advance_to(t);
+    router.poll(t);
+    const std::uint32_t flags = arm->update(t).flags;
+    arm->transmit(t);
+    t += period;
+    return flags;
+  };
+  arm->start(t);
+  for (int k = 0; k < 200 && arm->phase() != ArmPhase::Running; ++k) cycle();
+  REQUIRE(arm->phase() == ArmPhase::Running);
+  arm->request_enable(t);
+  for (int k = 0; k < 50 && !arm->ready(); ++k) cycle();
+  REQUIRE(arm->ready());
+
+  bool recovered = false, rebooted_back = false, exited = false;
+  const long before = g_count.load();
+  t += 2 * period;  // the SYNC gap
+  for (int k = 0; k < 50; ++k) cycle();
+  const std::size_t started = arm->request_recovery(t);
+  for (int k = 0; k < 100 && !recovered; ++k) {
+    cycle();
+    recovered = arm->ready();
+  }
+  drives[1]->power(false);
+  for (int k = 0; k < 5; ++k) cycle();
+  drives[1]->power(true);
+  for (int k = 0; k < 30; ++k) cycle();
+  (void)arm->request_recovery(t);
+  for (int k = 0; k < 200 && !rebooted_back; ++k) {
+    cycle();
+    rebooted_back = arm->ready();
+  }
+  arm->request_safe_exit(t);
+  for (int k = 0; k < 100 && !exited; ++k) {
+    cycle();
+    exited = arm->safe_exit_done();
+  }
+  const long allocations = g_count.load() - before;
+  CHECK(allocations == 0);
+  CHECK(started == 2u);
+  CHECK(recovered);
+  CHECK(rebooted_back);
+  CHECK(exited);
+  CHECK(drives[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+}
