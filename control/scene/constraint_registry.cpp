@@ -8,11 +8,13 @@ namespace mrqp::scene {
 // Each kind lives in constraint_kinds/<kind>.cpp.
 ConstraintKindEntry comDamperKind();
 ConstraintKindEntry jointInequalityKind();
+ConstraintKindEntry collisionKind();
 
 const std::vector<ConstraintKindEntry>& constraintKinds() {
   static const std::vector<ConstraintKindEntry> kinds = {
       comDamperKind(),
       jointInequalityKind(),
+      collisionKind(),
   };
   return kinds;
 }

@@ -1,0 +1,95 @@
+// Collision avoidance between convex shapes carried by frames of one or two entities: the
+// velocity damper of eq. 21 written at the acceleration level as eq. 24. For a pair (A, B) with
+// signed distance d, witness points a ∈ A, b ∈ B and unit normal n = (b − a)/‖b − a‖
+// (control/collision/distance.hpp), once d < δi (interaction distance):
+//
+//   ḋ + d̈ Δt ≥ −ξ (d − δs)/(δi − δs),   ḋ = nᵀ(J_b v − J_a v),   d̈ = nᵀ(J_b q̈ + J̇_b v − J_a q̈ − J̇_a v)
+//
+// i.e. Δt nᵀ(J_b − J_a) q̈ ≥ −ξ (d − δs)/(δi − δs) − ḋ − Δt nᵀ(J̇_b v − J̇_a v), with J_a, J_b the
+// world-aligned linear Jacobians of the witness points (each on its own entity's columns; both on
+// the same columns for a self-collision pair). Pairs are tested first by their bounding balls
+// (collision/bounding_sphere.hpp); those within δi get an exact distance; at most `rows` of them,
+// the nearest to their security distance first, get a row; the other rows stay free. A pair that
+// enters δi approaching faster than ξ allows gets, until it leaves, the damping its entry speed
+// needs, ξ' = max(ξ, −ḋ (δi − δs)/(d − δs) + ξ) (Tasks' CollisionConstr does the same), so that
+// the row never starts infeasible.
+//
+// Real-time: update() is noexcept and allocation-free; shapes, pairs and Jacobian work space are
+// fixed at construction.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "collision/distance.hpp"
+#include "collision/shape.hpp"
+#include "problem/constraint.hpp"
+
+namespace mrqp::problem {
+
+/// One convex shape on a frame of an entity.
+struct CollisionBody {
+  int entity = -1;
+  int frame = -1;
+  collision::Shape shape;
+  double bound = 0.0;  ///< bounding radius about the shape frame's origin
+};
+
+/// A pair of bodies (indices into the constraint's bodies) and its damper: δi > δs ≥ 0 (m), ξ > 0 (m/s).
+struct CollisionPair {
+  int a = -1, b = -1;
+  double interaction = 0.10, security = 0.02, damping = 0.5;
+};
+
+class CollisionConstraint final : public Constraint {
+ public:
+  /// `keep_alive` holds whatever the shapes point to (hull vertices); `rows` ≥ 1 inequality rows
+  /// are reserved; `max_nv` is the largest nv of the entities involved (Jacobian work space).
+  CollisionConstraint(std::vector<CollisionBody> bodies, std::vector<CollisionPair> pairs, int rows,
+                      int max_nv, std::vector<std::shared_ptr<const void>> keep_alive = {});
+
+  const char* kind() const noexcept override { return "collision"; }
+  int inequalityRows() const noexcept override { return rows_; }
+  const char* check(const MultiRobotProblem& p) const noexcept override;
+  void update(const MultiRobotProblem& p, ConstraintRows& rows) noexcept override;
+
+  int bodyCount() const noexcept { return static_cast<int>(bodies_.size()); }
+  const CollisionBody& body(int i) const noexcept { return bodies_[static_cast<std::size_t>(i)]; }
+  int pairCount() const noexcept { return static_cast<int>(pairs_.size()); }
+  const CollisionPair& pair(int k) const noexcept { return pairs_[static_cast<std::size_t>(k)]; }
+  /// Distance of pair k at the last update; +inf when its bounding balls were farther than δi.
+  double lastDistance(int k) const noexcept { return distance_[static_cast<std::size_t>(k)]; }
+  /// Smallest distance of the last update (+inf when every pair was filtered out).
+  double minDistance() const noexcept { return min_distance_; }
+  /// Pairs given a row at the last update.
+  int activeRows() const noexcept { return active_; }
+  /// Pairs within δi at the last update that did not get a row (more than `rows`).
+  int droppedPairs() const noexcept { return dropped_; }
+
+  /// The exact smallest distance over every pair at the entities' current state (after their
+  /// update()), no filter: an independent measurement for reports. Allocation-free.
+  double measureMinDistance(const MultiRobotProblem& p, int* pair_index = nullptr) const noexcept;
+
+ private:
+  collision::PlacedShape placed(const MultiRobotProblem& p, int body) const noexcept;
+
+  std::vector<CollisionBody> bodies_;
+  std::vector<CollisionPair> pairs_;
+  int rows_;
+  std::vector<std::shared_ptr<const void>> keep_alive_;
+  std::vector<collision::PlacedShape> placed_;
+  std::vector<double> distance_;
+  std::vector<collision::DistanceResult> result_;
+  std::vector<int> candidates_;
+  std::vector<double> xi_;  ///< damping in use per pair (set on entry)
+  std::vector<std::uint8_t> was_active_, now_active_;
+  Eigen::MatrixXd Ja_, Jb_;
+  double min_distance_ = std::numeric_limits<double>::infinity();
+  int active_ = 0, dropped_ = 0;
+};
+
+}  // namespace mrqp::problem

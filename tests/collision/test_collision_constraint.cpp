@@ -1,0 +1,197 @@
+// The `collisions` constraint kind in scenes (docs/collision.md): pair selection (adjacent links
+// and SRDF-disabled pairs left out), the row of eq. 24 against finite differences of the distance,
+// (ḋ; d̈ is reported), and two Panda arms from random separated starts, driven into each other: every QP stays
+// feasible and the arms stay apart (distance measured apart from the constraint, exactly, over
+// every pair).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "problem/constraints/collision_constraint.hpp"
+#include "scene/builtin_models.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_yaml.hpp"
+
+using mrqp::problem::CollisionConstraint;
+using mrqp::qp::QpStatus;
+
+namespace {
+
+mrqp::scene::Scene loadText(const std::string& text) {
+  mrqp::scene::ModelRegistry models;
+  mrqp::scene::addBuiltinModels(models);
+  return mrqp::scene::buildScene(mrqp::scene::loadSceneString(text, "test.yaml"), models);
+}
+
+const CollisionConstraint& collisionOf(const mrqp::scene::Scene& s, const std::string& name) {
+  return dynamic_cast<const CollisionConstraint&>(s.problem->constraint(s.constraints.at(name)));
+}
+
+const char* kTwoPandas = R"(
+settings: {dt: 0.002, max_tasks: 6}
+entities:
+  - {name: left, model: panda, pose: {xyz: [0, -0.6, 0], rpy: [0, 0, 1.5708]},
+     q: {panda_joint2: 0.3, panda_joint4: -1.8, panda_joint6: 2.0}}
+  - {name: right, model: panda, pose: {xyz: [0, 0.6, 0], rpy: [0, 0, -1.5708]},
+     q: {panda_joint2: 0.3, panda_joint4: -1.8, panda_joint6: 2.0}}
+tasks:
+  - {name: l, type: frame_position, entity: left, frame: panda_hand_tcp, weight: 100, stiffness: 40, target: [0, 0.2, 0.5]}
+  - {name: r, type: frame_position, entity: right, frame: panda_hand_tcp, weight: 100, stiffness: 40, target: [0, -0.2, 0.5]}
+  - {name: lp, type: posture, entity: left, weight: 0.01, stiffness: 1}
+  - {name: rp, type: posture, entity: right, weight: 0.01, stiffness: 1}
+collisions:
+  - {name: arms, entities: [left, right], interaction: 0.12, security: 0.03, damping: 0.4, max_rows: 12}
+  - {name: left_self, entities: [left]}
+)";
+
+}  // namespace
+
+TEST_CASE("Self-collision pairs leave out adjacent links and the SRDF's disabled pairs", "[collision]") {
+  const mrqp::scene::Scene s = loadText(kTwoPandas);
+  const CollisionConstraint& self = collisionOf(s, "left_self");
+  const auto& e = s.problem->entity(self.body(0).entity);
+  int pairs = 0;
+  for (int k = 0; k < self.pairCount(); ++k) {
+    const std::string a = e.frameName(self.body(self.pair(k).a).frame);
+    const std::string b = e.frameName(self.body(self.pair(k).b).frame);
+    INFO(a << " – " << b);
+    CHECK(a != b);
+    // panda.srdf disables every pair of panda_link0..4 and the adjacent ones; link5–link7 is "Default".
+    CHECK(!(a == "panda_link5" && b == "panda_link6"));
+    CHECK(!(a == "panda_link3" && b == "panda_link4"));
+    CHECK(!(a == "panda_link5" && b == "panda_link7"));
+    ++pairs;
+  }
+  // Links with shapes: link0–7, hand, two fingers (11): 55 pairs; panda.srdf disables 35 of them
+  // (every adjacent pair among them), 20 remain.
+  int link_pairs = 0;
+  for (int k = 0; k < self.pairCount(); ++k) {
+    bool first = true;
+    for (int j = 0; j < k; ++j) {
+      if (self.body(self.pair(j).a).frame == self.body(self.pair(k).a).frame &&
+          self.body(self.pair(j).b).frame == self.body(self.pair(k).b).frame)
+        first = false;
+    }
+    link_pairs += first ? 1 : 0;
+  }
+  CHECK(link_pairs == 20);
+  CHECK(pairs >= link_pairs);
+  // Across the two arms every shape pair is in: 11 links, link5 and link7 with two capsules: 13 × 13.
+  CHECK(collisionOf(s, "arms").pairCount() == 13 * 13);
+}
+
+TEST_CASE("The damper row is eq. 24: ḋ from the witness Jacobians matches finite differences",
+          "[collision]") {
+  mrqp::scene::Scene s = loadText(kTwoPandas);
+  auto& p = *s.problem;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  for (int i = 0; i < p.entityCount(); ++i) {
+    for (int k = 0; k < p.entity(i).nv(); ++k) p.entity(i).v()(k) = 0.5 * n(rng);
+  }
+  p.update();
+  const CollisionConstraint& c = collisionOf(s, "arms");
+  const double d0 = c.measureMinDistance(p);
+  int kmin = -1;
+  c.measureMinDistance(p, &kmin);
+  REQUIRE(kmin >= 0);
+  // d along q(t) = q ⊕ v t + ½ a t²: central differences of the exact distance of that pair.
+  std::vector<Eigen::VectorXd> q0, v0, a(static_cast<std::size_t>(p.entityCount()));
+  for (int i = 0; i < p.entityCount(); ++i) {
+    q0.push_back(p.entity(i).q());
+    v0.push_back(p.entity(i).v());
+    a[static_cast<std::size_t>(i)] = Eigen::VectorXd::NullaryExpr(p.entity(i).nv(), [&]() { return n(rng); });
+  }
+  auto distanceAt = [&](double t) {
+    for (int i = 0; i < p.entityCount(); ++i) {
+      auto& e = p.entity(i);
+      e.q() = q0[static_cast<std::size_t>(i)];
+      e.v() = v0[static_cast<std::size_t>(i)] + 0.5 * t * a[static_cast<std::size_t>(i)];
+      e.integrate(Eigen::VectorXd::Zero(e.nv()), t);  // q ⊕ (v + ½ a t) t
+      e.v() = v0[static_cast<std::size_t>(i)] + t * a[static_cast<std::size_t>(i)];
+      e.update();
+    }
+    mrqp::collision::DistanceResult r;
+    const auto& pr = c.pair(kmin);
+    const auto place = [&](int b) {
+      const auto& body = c.body(b);
+      const auto f = p.entity(body.entity).framePose(body.frame);
+      return mrqp::collision::place(body.shape, f.R, f.p);
+    };
+    mrqp::collision::distance(place(pr.a), place(pr.b), &r);
+    return r.distance;
+  };
+  const double h = 1e-4;
+  const double dm = distanceAt(-h), dp = distanceAt(h), dz = distanceAt(0.0);
+  CHECK(dz == Approx(d0).margin(1e-9));
+  const double ddot_fd = (dp - dm) / (2 * h), dddot_fd = (dp - 2 * dz + dm) / (h * h);
+  // The model: ḋ = nᵀ(J_b v_b − J_a v_a), d̈ = nᵀ(J_b a_b + J̇_b v_b − J_a a_a − J̇_a v_a).
+  const auto& pr = c.pair(kmin);
+  const auto& ba = c.body(pr.a);
+  const auto& bb = c.body(pr.b);
+  mrqp::collision::DistanceResult r;
+  {
+    const auto fa = p.entity(ba.entity).framePose(ba.frame), fb = p.entity(bb.entity).framePose(bb.frame);
+    mrqp::collision::distance(mrqp::collision::place(ba.shape, fa.R, fa.p),
+                              mrqp::collision::place(bb.shape, fb.R, fb.p), &r);
+  }
+  auto pointTerms = [&](const mrqp::problem::CollisionBody& b, const Eigen::Vector3d& w, double* vel,
+                        double* acc) {
+    const auto& e = p.entity(b.entity);
+    const auto f = e.framePose(b.frame);
+    const Eigen::Vector3d l = f.R.transpose() * (w - f.p);
+    Eigen::MatrixXd J(6, e.nv());
+    e.frameJacobian(b.frame, l, J);
+    *vel = r.normal.dot(J.bottomRows<3>() * e.v());
+    *acc = r.normal.dot(J.bottomRows<3>() * a[static_cast<std::size_t>(b.entity)] +
+                        e.frameBiasAcceleration(b.frame, l).tail<3>());
+  };
+  double va, aa, vb, ab;
+  pointTerms(ba, r.a, &va, &aa);
+  pointTerms(bb, r.b, &vb, &ab);
+  CHECK(vb - va == Approx(ddot_fd).margin(1e-5));
+  // d̈ of the witness-point model leaves out the curvature terms (ṅ, the witnesses sliding over
+  // the capsules), which eq. 24 neglects as well: reported, not checked.
+  WARN("d̈ of the witness model " << (ab - aa) << ", finite differences " << dddot_fd);
+}
+
+TEST_CASE("Two arms driven into each other from random separated starts: feasible, apart", "[collision]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int runs = 0;
+  double worst = 1e9;
+  for (int trial = 0; trial < 12; ++trial) {
+    mrqp::scene::Scene s = loadText(kTwoPandas);
+    auto& p = *s.problem;
+    // A random start within the joint limits' middle half, kept if every pair is apart by > δs.
+    for (int i = 0; i < p.entityCount(); ++i) {
+      auto& e = p.entity(i);
+      for (int k = 0; k < 7; ++k) {
+        const double lo = e.qLower()(k), hi = e.qUpper()(k);
+        e.q()(k) = 0.5 * (lo + hi) + 0.25 * (hi - lo) * u(rng);
+      }
+    }
+    p.update();
+    const CollisionConstraint& c = collisionOf(s, "arms");
+    if (c.measureMinDistance(p) <= 0.03 || collisionOf(s, "left_self").measureMinDistance(p) <= 0.02)
+      continue;
+    ++runs;
+    double dmin = 1e9;
+    for (int k = 0; k < 1000; ++k) {
+      p.update();
+      const QpStatus st = p.solve();
+      INFO("trial " << trial << " cycle " << k);
+      REQUIRE(st == QpStatus::Optimal);
+      for (int i = 0; i < p.entityCount(); ++i) p.entity(i).integrate(p.acceleration(i), s.settings.dt);
+      p.entity(0).update();
+      p.entity(1).update();
+      dmin = std::min(dmin, c.measureMinDistance(p));
+    }
+    worst = std::min(worst, dmin);
+    CHECK(dmin > 0.0);
+  }
+  CHECK(runs >= 4);
+  WARN(runs << " random starts; smallest distance between the arms " << worst << " m (δs = 0.03)");
+}
