@@ -137,9 +137,9 @@ class ColladaReader {
   std::string describe(std::size_t e) const {
     std::string d = "<" + doc_[e].name;
     if (const std::string* id = doc_[e].attr("id"))
-      d += " id='" + *id + "'";
+      d += " id=" + quoteToken(*id);
     else if (const std::string* nm = doc_[e].attr("name"))
-      d += " name='" + *nm + "'";
+      d += " name=" + quoteToken(*nm);
     return d + ">";
   }
 
@@ -148,13 +148,14 @@ class ColladaReader {
     const std::string* ref = doc_[from].attr(attr);
     if (ref == nullptr) fail("malformed COLLADA: " + describe(from) + " without a '" + attr + "' attribute");
     if (ref->empty() || (*ref)[0] != '#') {
-      fail("unsupported COLLADA: external reference '" + *ref + "' in " + describe(from));
+      fail("unsupported COLLADA: external reference " + quoteToken(*ref) + " in " + describe(from));
     }
     const auto it = ids_.find(ref->substr(1));
-    if (it == ids_.end()) fail("malformed COLLADA: " + describe(from) + " refers to missing '" + *ref + "'");
+    if (it == ids_.end())
+      fail("malformed COLLADA: " + describe(from) + " refers to missing " + quoteToken(*ref));
     if (doc_[it->second].name != expected) {
-      fail("malformed COLLADA: '" + *ref + "' in " + describe(from) + " is a <" + doc_[it->second].name +
-           ">, not a <" + std::string(expected) + ">");
+      fail("malformed COLLADA: " + quoteToken(*ref) + " in " + describe(from) + " is a <" +
+           doc_[it->second].name + ">, not a <" + std::string(expected) + ">");
     }
     return it->second;
   }

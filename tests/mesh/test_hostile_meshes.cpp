@@ -159,3 +159,17 @@ TEST_CASE("hostile meshes: a COLLADA <rotate> about a huge axis is a rotation", 
   CHECK((r.vertices[2] - Eigen::Vector3d(0, 0, 1)).norm() < 1e-15);
   CHECK((r.vertices[1] - Eigen::Vector3d(1, 0, 0)).norm() < 1e-15);
 }
+
+TEST_CASE("hostile meshes: ids and references with control characters give one error line",
+          "[mesh][hostile]") {
+  const std::string s =
+      "<COLLADA><library_visual_scenes><visual_scene id='s&#10;x'><node id='n&#13;&#10;static int i;'>"
+      "<instance_geometry name='g&#9;&#10;x' "
+      "url='#missing&#10;id'/></node></visual_scene></library_visual_scenes></COLLADA>";
+  TempDir dir;
+  const MeshReadResult r = readMeshVertices(write(dir, "ids.dae", s));
+  CHECK_FALSE(r.ok);
+  CHECK_THAT(r.error, Contains("<instance_geometry name='g??x'> refers to missing '#missing?id'"));
+  CHECK(r.error.find('\n') == std::string::npos);
+  CHECK(r.error.find('\r') == std::string::npos);
+}
