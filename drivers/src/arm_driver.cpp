@@ -107,7 +107,7 @@ void ArmDriver::start(TimeNs now) noexcept {
     d.rebooted = false;
     d.recovery_failed = false;
     d.attempted = false;
-    d.exit_nmt_sent = false;
+    d.exit_step = 0;
     d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
     d.target_since = now;
     d.sp_position_valid = false;
@@ -379,7 +379,11 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
         d.sdo.sent(now);
       }
       if (phase_ == ArmPhase::Stopping && exit_nmt_stage_) {
-        d.exit_nmt_sent = true;  // the NMT command of the safe exit is on its way
+        if (d.exit_step == 1) {
+          queue_exit_nmt(d);  // the SDO disable is on its way: the NMT command next
+        } else if (d.exit_step == 2) {
+          d.exit_step = 3;  // the NMT command of the safe exit is on its way
+        }
       }
     }
   }
@@ -430,7 +434,7 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
       }
       bool all_sent = true;
       for (const Drive& d : drives_) {
-        all_sent = all_sent && d.exit_nmt_sent;
+        all_sent = all_sent && d.exit_step == 3 && !d.has_pending;
       }
       if (all_sent) {
         phase_ = ArmPhase::Stopped;
@@ -521,6 +525,9 @@ std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
 }
 
 Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept {
+  if (phase_ == ArmPhase::Stopping || phase_ == ArmPhase::Stopped) {
+    return Claim::Accepted;  // the answer to the safe exit's controlword write (or a late one)
+  }
   mrqp_fw_frame out;
   switch (d.sdo.on_frame(f, &out)) {
     case SdoWriteSequence::Step::Done:

@@ -4,6 +4,8 @@
 #include "driver_util.hpp"
 #include "mrqp/drivers/arm_driver.hpp"
 #include "mrqp/firmware_if/nmt.h"
+#include "mrqp/firmware_if/objects.h"
+#include "mrqp/firmware_if/sdo.h"
 
 namespace mrqp::drivers {
 
@@ -131,7 +133,14 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
     return;
   }
   // Starting: operational again (heard in its heartbeat, or its PDOs when it sends none), then the
-  // CiA 402 part towards what the caller last asked for -- unless the safe state is in force.
+  // CiA 402 part towards what the caller last asked for -- unless the safe state is in force. A
+  // heartbeat sent after the start that is not operational: the start did not hold (the drive fell
+  // again): this recovery is over, the drive needs another one.
+  if (d.heartbeat.monitoring() && d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
+      d.heartbeat.last() > d.nmt.commanded() + 2 * config_.cycle_period && !d.has_pending) {
+    d.recovery = Drive::Recovery::None;
+    return;
+  }
   const bool operational = d.heartbeat.monitoring() ? d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL &&
                                                           d.heartbeat.last() > d.nmt.commanded()
                                                     : d.state.valid;
@@ -187,7 +196,7 @@ void ArmDriver::request_safe_exit(TimeNs now) noexcept {
                                         : MRQP_FW_CIA402_SWITCH_ON_DISABLED;
   for (Drive& d : drives_) {
     d.recovery = Drive::Recovery::None;
-    d.exit_nmt_sent = false;
+    d.exit_step = 0;
     d.target = stop;
     d.target_since = now;
     d.sp_position_valid = false;
@@ -233,20 +242,35 @@ void ArmDriver::step_safe_exit(TimeNs now) noexcept {
   if (!all && !timed_out) {
     return;
   }
-  // Power stage stopped (or timed out): leave the drives in the configured NMT state.
+  // Power stage stopped (or timed out): a drive whose PDOs are stopped (not Operational) but was
+  // last seen with its power stage on gets disable voltage through SDO (0x6040 = 0x0000), then
+  // every drive its NMT command (transmit() queues it after the SDO write and ends the exit).
   exit_nmt_stage_ = true;
+  for (Drive& d : drives_) {
+    const bool operational = d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL;
+    const bool powered = d.state.valid && !state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state);
+    if (!operational && powered) {
+      const std::uint8_t zero[2] = {0, 0};
+      mrqp_fw_frame f;
+      (void)mrqp_fw_sdo_pack_download_req(d.cfg.node, MRQP_FW_OBJ_CONTROLWORD, 0, zero, 2, &f);
+      set_pending(d, f);
+      d.exit_step = 1;
+    } else {
+      queue_exit_nmt(d);
+    }
+  }
+}
+
+void ArmDriver::queue_exit_nmt(Drive& d) noexcept {
   if (config_.exit_nmt == ExitNmt::Unchanged) {
-    phase_ = ArmPhase::Stopped;
-    phase_since_ = now;
+    d.exit_step = 3;
     return;
   }
-  const mrqp_fw_nmt_cmd cmd =
-      config_.exit_nmt == ExitNmt::Stopped ? MRQP_FW_NMT_STOP : MRQP_FW_NMT_ENTER_PREOP;
-  for (Drive& d : drives_) {
-    mrqp_fw_frame f;
-    (void)mrqp_fw_nmt_pack(cmd, d.cfg.node, &f);
-    set_pending(d, f);
-  }
+  mrqp_fw_frame f;
+  (void)mrqp_fw_nmt_pack(config_.exit_nmt == ExitNmt::Stopped ? MRQP_FW_NMT_STOP : MRQP_FW_NMT_ENTER_PREOP,
+                         d.cfg.node, &f);
+  set_pending(d, f);
+  d.exit_step = 2;
 }
 
 }  // namespace mrqp::drivers

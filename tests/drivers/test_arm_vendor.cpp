@@ -432,6 +432,31 @@ TEST_CASE("vendor: finding 3: the safe exit stops the drives and leaves them pre
     CHECK(with_prefix(rig.master_frames(from), "000#") == std::vector<std::string>{"000#0201"});
   }
   {
+    // Drives that left Operational with their power stage on (a SYNC gap: PDOs stopped): disable
+    // voltage by SDO (0x6040 = 0x0000, expedited 2 bytes 0x2B), then the NMT command.
+    ArmRig rig({{0, 1}, {0, 2}}, config_1ms(), 64, {}, false, 2000000, VendorProfile::strict());
+    REQUIRE(boot_and_enable(rig));
+    rig.t += milliseconds(2);
+    for (int k = 0; k < 20; ++k) rig.cycle();
+    REQUIRE(rig.fakes[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+    REQUIRE(rig.fakes[0]->state() == MRQP_FW_CIA402_OPERATION_ENABLED);
+    const TimeNs from = rig.t;
+    rig.arm->request_safe_exit(rig.t);
+    cycle_until(
+        rig, [&] { return rig.arm->safe_exit_done(); }, 100);
+    REQUIRE(rig.arm->safe_exit_done());
+    rig.cycle();
+    const auto m = rig.master_frames(from);
+    CHECK(with_prefix(m, "601#") == std::vector<std::string>{"601#2B40600000000000"});
+    CHECK(with_prefix(m, "602#") == std::vector<std::string>{"602#2B40600000000000"});
+    CHECK(with_prefix(m, "000#") == std::vector<std::string>{"000#8001", "000#8002"});
+    for (const auto& f : rig.fakes) {
+      CHECK(f->state() == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
+      CHECK(f->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+    }
+    CHECK(rig.arm->faults().devices[0].corrupt_frames == 0u);  // the SDO answers were expected
+  }
+  {
     // After a failed boot: straight to the NMT command.
     ArmConfig c = config_1ms();
     c.tpdo_rtr_allowed = true;

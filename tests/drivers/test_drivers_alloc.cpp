@@ -488,5 +488,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   CHECK(recovered);
   CHECK(rebooted_back);
   CHECK(exited);
+  bus.advance_to(t);  // the NMT commands on the wire
   CHECK(drives[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
+  CHECK(drives[1]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
 }

@@ -77,6 +77,7 @@ void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
       {0x1029, 1, 1, true, options_.profile.comm_error_behaviour},
   };
   const Entry app[] = {
+      {0x6040, 0, 2, true, 0},  // controlword: an SDO write drives the state machine too
       {0x6060, 0, 1, true, 0},
       {0x6061, 0, 1, false, 0},
       {0x6041, 0, 2, false, 0},
@@ -478,6 +479,11 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
       e->value = v;
       if (m.index == 0x6060) {
         find(0x6061, 0)->value = v;  // mode display follows
+      }
+      if (m.index == 0x6040) {
+        // A controlword by SDO (e.g. a master stopping a drive whose PDOs are off) acts at once.
+        state_ = mrqp_fw_cia402_drive_next(state_, static_cast<std::uint16_t>(v), controlword_, nullptr);
+        controlword_ = static_cast<std::uint16_t>(v);
       }
       if (m.index == 0x1017) {
         heartbeat_due_ = v > 0u ? now + ms(v) : kNever;

@@ -39,7 +39,9 @@
 // Safe exit: request_safe_exit(now) stops every drive (quick stop, or disable voltage, as
 // ArmConfig::exit_stop), waits until each reports it (or exit_timeout), then sends NMT enter
 // pre-operational or stop (exit_nmt) to each drive; safe_exit_done() then holds (phase Stopped,
-// no cyclic traffic). Works from any phase (a failed boot goes straight to the NMT command).
+// no cyclic traffic). Works from any phase (a failed boot goes straight to the NMT command). A
+// drive that is not Operational (PDOs stopped) and was last seen with its power stage on gets the
+// controlword 0x0000 (disable voltage) by an SDO write to 0x6040 before its NMT command.
 //
 // SYNC jitter: the interval between successive SYNCs of each bus, timed on the TX echo where the
 // bus returns the master's own frames (else at transmit()), against the cycle period: sync_stats().
@@ -279,8 +281,8 @@ class ArmDriver final : public JointDevice, public FrameHandler {
     TimeNs recovery_since = 0;
     TimeNs recovery_attempt = 0;
     bool attempted = false;
-    // Safe exit.
-    bool exit_nmt_sent = false;
+    // Safe exit: 0 nothing queued, 1 SDO controlword write queued (NMT next), 2 NMT queued, 3 done.
+    std::uint8_t exit_step = 0;
   };
   struct BusSlot {
     std::array<std::int16_t, 128> node_to_drive{};
@@ -303,6 +305,7 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   void step_recovery(Drive& d, TimeNs now) noexcept;
   void transmit_recovery(Drive& d, std::size_t* count, TimeNs now) noexcept;
   void step_safe_exit(TimeNs now) noexcept;
+  void queue_exit_nmt(Drive& d) noexcept;
   std::size_t transmit_cyclic(TimeNs now) noexcept;
 
   ArmConfig config_;
