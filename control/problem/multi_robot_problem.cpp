@@ -33,6 +33,9 @@ MultiRobotProblem::MultiRobotProblem(std::vector<std::unique_ptr<Entity>> entiti
   if (entities_.empty() || static_cast<int>(entities_.size()) > kMaxEntities) {
     throw std::invalid_argument("a problem holds 1 to 32 entities");
   }
+  if (const char* why = capacityError(settings_)) {
+    throw std::invalid_argument(why);
+  }
   for (const auto& e : entities_) {
     v_offset_.push_back(nv_total_);
     nv_total_ += e->nv();

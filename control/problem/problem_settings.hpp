@@ -32,4 +32,42 @@ struct ProblemSettings {
   qp::QpSettings qp;
 };
 
+/// Largest capacity a problem accepts (docs/robustness.md, "Readers and limits"), whatever sets it
+/// (a scene file, a program): the dense QP they size stays within a few hundred megabytes, and no
+/// sum or product of them overflows an int.
+constexpr int kMaxTasksCapacity = 256;
+constexpr int kMaxContactsCapacity = 64;
+constexpr int kMaxContactGeneratorsCapacity = 1024;
+constexpr int kMaxConstraintsCapacity = 1024;
+constexpr int kMaxConstraintRowsCapacity = 4096;
+constexpr int kMaxConstraintEqualitiesCapacity = 1024;
+
+/// nullptr when every capacity of `s` is within its limit (negative values where the field says
+/// "when < 0" count as their derived value), else a message naming the first one that is not.
+inline const char* capacityError(const ProblemSettings& s) noexcept {
+  if (s.max_tasks < 0 || s.max_tasks > kMaxTasksCapacity) return "max_tasks must be in [0, 256]";
+  if (s.max_contacts < 0 || s.max_contacts > kMaxContactsCapacity) return "max_contacts must be in [0, 64]";
+  if (s.max_contact_generators < 0 || s.max_contact_generators > kMaxContactGeneratorsCapacity) {
+    return "max_contact_generators must be in [0, 1024]";
+  }
+  if (s.max_com_dampers < 0 || s.max_com_dampers > kMaxConstraintsCapacity) {
+    return "max_com_dampers must be in [0, 1024]";
+  }
+  if (s.max_joint_inequalities < 0 || s.max_joint_inequalities > kMaxConstraintsCapacity) {
+    return "max_joint_inequalities must be in [0, 1024]";
+  }
+  const long long slots = s.max_constraints >= 0
+                              ? s.max_constraints
+                              : static_cast<long long>(s.max_com_dampers) + s.max_joint_inequalities;
+  if (slots > kMaxConstraintsCapacity) return "constraint slots (max_constraints) must be at most 1024";
+  const long long rows = s.max_constraint_rows >= 0
+                             ? s.max_constraint_rows
+                             : 16LL * s.max_com_dampers + s.max_joint_inequalities;
+  if (rows > kMaxConstraintRowsCapacity) return "constraint rows (max_constraint_rows) must be at most 4096";
+  if (s.max_constraint_equalities > kMaxConstraintEqualitiesCapacity) {
+    return "max_constraint_equalities must be at most 1024";
+  }
+  return nullptr;
+}
+
 }  // namespace mrqp::problem

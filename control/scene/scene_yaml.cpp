@@ -2,6 +2,7 @@
 // dotted path of the offending key.
 #include "scene/scene_yaml.hpp"
 
+#include "problem/problem_settings.hpp"
 #include "scene/constraint_kind.hpp"
 #include "scene/task_kind.hpp"
 #include "scene/yaml_reader.hpp"
@@ -43,9 +44,11 @@ SettingsSpec readSettings(const Reader& r, const YAML::Node* n) {
   s.dt = m.number("dt", Bound::Positive, s.dt);
   s.duration = m.number("duration", Bound::Positive, s.duration);
   s.gravity = m.vec3("gravity", s.gravity);
-  s.max_tasks = m.integer("max_tasks", 1, INT_MAX, s.max_tasks);
-  s.max_contacts = m.integer("max_contacts", 1, INT_MAX, s.max_contacts);
-  s.max_contact_generators = m.integer("max_contact_generators", 1, INT_MAX, s.max_contact_generators);
+  // capacities: at most the problem's limits (problem_settings.hpp, docs/robustness.md)
+  s.max_tasks = m.integer("max_tasks", 1, problem::kMaxTasksCapacity, s.max_tasks);
+  s.max_contacts = m.integer("max_contacts", 1, problem::kMaxContactsCapacity, s.max_contacts);
+  s.max_contact_generators =
+      m.integer("max_contact_generators", 1, problem::kMaxContactGeneratorsCapacity, s.max_contact_generators);
   s.contact_stiffness = m.number("contact_stiffness", Bound::NonNegative, s.contact_stiffness);
   s.contact_damping = m.number("contact_damping", Bound::NonNegative, s.contact_damping);
   s.regularisation = m.number("regularisation", Bound::Positive, s.regularisation);
@@ -314,6 +317,33 @@ std::vector<Spec> readList(const Reader& r, const Map& top, const char* key, Rea
   return out;
 }
 
+/// The capacity the listed constraints need, kind by kind as the builder reserves it, within the
+/// problem's limits (problem_settings.hpp): the error names the list that goes over.
+void checkConstraintCapacity(const Reader& r, const Map& top, const SceneSpec& s) {
+  long long slots = 0, rows = 0, equalities = 0;
+  for (const ConstraintKindEntry& k : constraintKinds()) {
+    int kind_slots = 0, kind_rows = 0, kind_equalities = 0;
+    k.reserve(s, &kind_slots, &kind_rows, &kind_equalities);
+    slots += kind_slots;
+    rows += kind_rows;
+    equalities += kind_equalities;
+    const YAML::Node* n = top.find(k.key);
+    const auto over = [&](const char* what, long long need, int limit) {
+      if (need > limit) {
+        const std::string message = "the constraints listed need " + std::to_string(need) + " " + what +
+                                    ", more than the limit of " + std::to_string(limit);
+        if (n != nullptr) {
+          r.fail(*n, k.key, message);
+        }
+        r.fail(1, k.key, message);
+      }
+    };
+    over("constraint slots", slots, problem::kMaxConstraintsCapacity);
+    over("inequality rows", rows, problem::kMaxConstraintRowsCapacity);
+    over("equality rows", equalities, problem::kMaxConstraintEqualitiesCapacity);
+  }
+}
+
 /// The top-level keys: the scene's own lists, each constraint kind's list, and the sections the
 /// controller loop reads (control/loop, docs/scenes.md), which are not the problem's.
 std::vector<std::string> topLevelKeys() {
@@ -354,6 +384,7 @@ SceneSpec readScene(const Reader& r, const YAML::Node& root) {
       }
     }
   }
+  checkConstraintCapacity(r, top, s);
   return s;
 }
 

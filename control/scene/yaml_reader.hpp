@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <initializer_list>
 #include <map>
@@ -356,12 +357,18 @@ class UniqueNames {
   std::map<std::string, int> lines_;
 };
 
+/// Largest YAML file readTextFile reads by default (scene, hardware, plant, timeline, drive
+/// emulator files), bytes: a real one is a few kilobytes (docs/robustness.md).
+constexpr std::size_t kMaxYamlFileBytes = std::size_t{4} << 20;
+
 /// Parses one YAML document held in `text` (a second document is an error); syntax errors become
-/// SceneError "FILE:LINE: yaml: message".
+/// SceneError "FILE:LINE: yaml: message". Never yaml-cpp's LoadAll, which loops allocating on
+/// input such as "[]," (yaml_reader.cpp): the documents are counted from parser events first.
 YAML::Node parseYamlDocument(const std::string& text, const std::string& file_name_for_messages);
 
-/// Reads a whole file (error "FILE: cannot open: reason").
-std::string readTextFile(const std::string& path);
+/// Reads a whole file of at most `max_bytes` (errors "FILE: cannot open: reason", "FILE: too
+/// large: ..." for a larger file or an endless device such as /dev/zero).
+std::string readTextFile(const std::string& path, std::size_t max_bytes = kMaxYamlFileBytes);
 
 /// Rethrows a yaml-cpp exception as SceneError "FILE:LINE: yaml: message".
 [[noreturn]] void yamlError(const std::string& file, const YAML::Exception& e);

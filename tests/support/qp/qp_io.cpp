@@ -1,6 +1,7 @@
 #include "qp/qp_io.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -14,7 +15,7 @@ namespace mrqp::qp {
 
 namespace {
 
-// Reads the file line by line and splits each line on spaces.
+// Reads the text line by line and splits each line on spaces.
 class LineReader {
  public:
   explicit LineReader(std::istream& in) : in_(in) {}
@@ -45,12 +46,19 @@ class LineReader {
   bool started_ = false;
 };
 
-bool parseDouble(const std::string& s, double& v) {
+// Which values a number may take where it is read.
+enum class Range { Finite, NotNan };
+
+bool parseDouble(const std::string& s, double& v, Range range) {
   const char* begin = s.c_str();
   char* end = nullptr;
   errno = 0;
   v = std::strtod(begin, &end);
-  return end != begin && *end == '\0' && errno != ERANGE;
+  if (end == begin || *end != '\0' || std::isnan(v)) return false;
+  // ±inf only as written ("inf", "-inf"), never a finite number that overflows (1e999); an
+  // underflow to a subnormal or zero is the nearest double and is kept.
+  if (std::isinf(v)) return range == Range::NotNan && errno != ERANGE;
+  return true;
 }
 
 bool parseInt(const std::string& s, int& v) {
@@ -63,6 +71,17 @@ bool parseInt(const std::string& s, int& v) {
   return true;
 }
 
+struct Triplet {
+  int i, j;
+  double v;
+};
+
+// Phase one reads every line into these light structures (their size follows the data the text
+// holds); phase two checks the dense size and only then allocates the matrices.
+struct Parsed {
+  std::vector<Triplet> P, A, C;
+};
+
 struct Parser {
   LineReader reader;
   std::string& error;
@@ -71,8 +90,9 @@ struct Parser {
 
   Parser(std::istream& in, std::string& err) : reader(in), error(err) {}
 
-  bool fail(const std::string& msg) {
-    error = "line " + std::to_string(reader.line()) + ": " + msg;
+  bool fail(const std::string& msg) { return failAt(reader.line(), msg); }
+  bool failAt(int line, const std::string& msg) {
+    error = "line " + std::to_string(line) + ": " + msg;
     return false;
   }
   bool peek() {
@@ -90,47 +110,69 @@ struct Parser {
 
   bool scalarLine(const char* key, double& v) {
     if (!expect(key)) return false;
-    if (tok.size() != 2 || !parseDouble(tok[1], v))
-      return fail(std::string("'") + key + "' needs one number");
+    if (tok.size() != 2 || !parseDouble(tok[1], v, Range::Finite))
+      return fail(std::string("'") + key + "' needs one finite number");
     return true;
   }
-  bool vectorLine(const char* key, int size, Eigen::VectorXd& v) {
+  // The line's length is checked before the vector is sized: a size comes from the data.
+  bool vectorLine(const char* key, int size, Range range, Eigen::VectorXd& v) {
     if (!expect(key)) return false;
-    if (static_cast<int>(tok.size()) != size + 1)
+    if (tok.size() != static_cast<std::size_t>(size) + 1)
       return fail(std::string("'") + key + "' needs " + std::to_string(size) + " values, found " +
                   std::to_string(tok.size() - 1));
     v.resize(size);
     for (int i = 0; i < size; ++i)
-      if (!parseDouble(tok[static_cast<std::size_t>(i) + 1], v(i)))
+      if (!parseDouble(tok[static_cast<std::size_t>(i) + 1], v(i), range))
         return fail(std::string("bad number '") + tok[static_cast<std::size_t>(i) + 1] + "' in '" + key +
-                    "'");
+                    "'" + (range == Range::Finite ? " (finite numbers only)" : " (no NaN)"));
     return true;
   }
-  // "<key> <nnz>" followed by nnz "i j v" lines, strictly increasing in (i, j).
-  bool tripletBlock(const char* key, int rows, int cols, bool upper, Eigen::MatrixXd& M) {
+  // "<key> <nnz>" followed by nnz "i j v" lines, strictly increasing in (i, j). Nothing is
+  // reserved from nnz: the triplets grow with the lines actually read.
+  bool tripletBlock(const char* key, int rows, int cols, bool upper, std::vector<Triplet>& out) {
     if (!expect(key)) return false;
     int nnz = 0;
     if (tok.size() != 2 || !parseInt(tok[1], nnz))
       return fail(std::string("'") + key + "' needs a non-negative count");
-    M.setZero(rows, cols);
-    long prev = -1;
+    long long prev = -1;
     for (int k = 0; k < nnz; ++k) {
       if (!reader.next(tok)) return fail(std::string("unexpected end of file in '") + key + "'");
       int i = 0, j = 0;
       double v = 0.0;
-      if (tok.size() != 3 || !parseInt(tok[0], i) || !parseInt(tok[1], j) || !parseDouble(tok[2], v))
-        return fail(std::string("expected '<row> <column> <value>' in '") + key + "'");
+      if (tok.size() != 3 || !parseInt(tok[0], i) || !parseInt(tok[1], j) ||
+          !parseDouble(tok[2], v, Range::Finite))
+        return fail(std::string("expected '<row> <column> <finite value>' in '") + key + "'");
       if (i >= rows || j >= cols) return fail(std::string("index out of range in '") + key + "'");
       if (upper && i > j) return fail(std::string("'") + key + "' must hold the upper triangle (i <= j)");
-      const long pos = static_cast<long>(i) * cols + j;
+      const long long pos = static_cast<long long>(i) * cols + j;
       if (pos <= prev) return fail(std::string("entries of '") + key + "' must be sorted and unique");
       prev = pos;
-      M(i, j) = v;
-      if (upper) M(j, i) = v;
+      out.push_back(Triplet{i, j, v});
     }
     return true;
   }
 };
+
+void fill(const std::vector<Triplet>& triplets, int rows, int cols, bool symmetric, Eigen::MatrixXd& M) {
+  M.setZero(rows, cols);
+  for (const Triplet& t : triplets) {
+    M(t.i, t.j) = t.v;
+    if (symmetric) M(t.j, t.i) = t.v;
+  }
+}
+
+// The whole text, at most kMaxQpTextBytes: false when there is more (/dev/zero).
+bool readBounded(std::istream& in, std::string& text) {
+  text.clear();
+  char buffer[65536];
+  for (;;) {
+    in.read(buffer, sizeof buffer);
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got == 0) return true;
+    if (got > kMaxQpTextBytes - text.size()) return false;
+    text.append(buffer, got);
+  }
+}
 
 void writeNumber(std::ostream& out, double v) {
   char buf[40];
@@ -164,8 +206,15 @@ void writeTriplets(std::ostream& out, const char* key, const Eigen::MatrixXd& M,
 }  // namespace
 
 bool readQpText(std::istream& in, QpText& out, std::string& error) {
-  Parser p(in, error);
+  std::string text;
+  if (!readBounded(in, text)) {
+    error = "larger than " + std::to_string(kMaxQpTextBytes) + " bytes, the limit of a QP text file";
+    return false;
+  }
+  std::istringstream lines(text);
+  Parser p(lines, error);
   QpText qp;
+  Parsed parsed;
   if (!p.expect("name")) return false;
   if (p.tok.size() != 2) return p.fail("'name' needs one token");
   qp.name = p.tok[1];
@@ -173,6 +222,14 @@ bool readQpText(std::istream& in, QpText& out, std::string& error) {
   if ((p.tok.size() != 4 && p.tok.size() != 6) || !parseInt(p.tok[1], qp.n) || p.tok[2] != "m" ||
       !parseInt(p.tok[3], qp.mi) || (p.tok.size() == 6 && (p.tok[4] != "me" || !parseInt(p.tok[5], qp.me))))
     return p.fail("expected 'n <n> m <m> [me <me>]'");
+  const int header_line = p.reader.line();
+  // The vectors q, lb, ub (n values each), l, u (m) and b (me) take at least two bytes a value:
+  // sizes the text cannot hold are refused before anything is read or allocated.
+  const long long values = 3LL * qp.n + 2LL * qp.mi + qp.me;
+  if (2 * values > static_cast<long long>(text.size()))
+    return p.fail("n " + std::to_string(qp.n) + ", m " + std::to_string(qp.mi) + ", me " +
+                  std::to_string(qp.me) + " need at least " + std::to_string(2 * values) +
+                  " bytes of values; the file holds " + std::to_string(text.size()));
   if (p.peekIs("posdef")) {
     double v = 0.0;
     if (!p.scalarLine("posdef", v) || (v != 0.0 && v != 1.0)) return p.fail("'posdef' must be 0 or 1");
@@ -182,28 +239,36 @@ bool readQpText(std::istream& in, QpText& out, std::string& error) {
     if (!p.scalarLine("objective", qp.objective)) return false;
     qp.has_objective = true;
   }
-  if (!p.tripletBlock("P", qp.n, qp.n, true, qp.H)) return false;
-  if (!p.vectorLine("q", qp.n, qp.g)) return false;
+  if (!p.tripletBlock("P", qp.n, qp.n, true, parsed.P)) return false;
+  if (!p.vectorLine("q", qp.n, Range::Finite, qp.g)) return false;
   if (!p.scalarLine("r", qp.r)) return false;
   if (qp.me > 0) {
-    if (!p.tripletBlock("A", qp.me, qp.n, false, qp.A)) return false;
-    if (!p.vectorLine("b", qp.me, qp.b)) return false;
+    if (!p.tripletBlock("A", qp.me, qp.n, false, parsed.A)) return false;
+    if (!p.vectorLine("b", qp.me, Range::Finite, qp.b)) return false;
   } else {
-    qp.A.resize(0, qp.n);
     qp.b.resize(0);
   }
-  if (!p.tripletBlock("C", qp.mi, qp.n, false, qp.C)) return false;
-  if (!p.vectorLine("l", qp.mi, qp.l)) return false;
-  if (!p.vectorLine("u", qp.mi, qp.u)) return false;
-  if (!p.vectorLine("lb", qp.n, qp.xl)) return false;
-  if (!p.vectorLine("ub", qp.n, qp.xu)) return false;
+  if (!p.tripletBlock("C", qp.mi, qp.n, false, parsed.C)) return false;
+  if (!p.vectorLine("l", qp.mi, Range::NotNan, qp.l)) return false;
+  if (!p.vectorLine("u", qp.mi, Range::NotNan, qp.u)) return false;
+  if (!p.vectorLine("lb", qp.n, Range::NotNan, qp.xl)) return false;
+  if (!p.vectorLine("ub", qp.n, Range::NotNan, qp.xu)) return false;
   if (p.peek()) return p.fail("unexpected '" + p.tok[0] + "' after 'ub'");
+  // The dense matrices H (n×n), A (me×n) and C (m×n), only now, and only within the limit.
+  const long long entries = static_cast<long long>(qp.n) * (static_cast<long long>(qp.n) + qp.me + qp.mi);
+  if (entries > kMaxQpDenseEntries)
+    return p.failAt(header_line, "n x (n + me + m) = " + std::to_string(entries) +
+                                     " matrix entries, more than the reader's limit of " +
+                                     std::to_string(kMaxQpDenseEntries));
+  fill(parsed.P, qp.n, qp.n, true, qp.H);
+  fill(parsed.A, qp.me, qp.n, false, qp.A);
+  fill(parsed.C, qp.mi, qp.n, false, qp.C);
   out = std::move(qp);
   return true;
 }
 
 bool readQpFile(const std::string& path, QpText& out, std::string& error) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = path + ": cannot open";
     return false;

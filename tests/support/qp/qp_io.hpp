@@ -20,16 +20,29 @@
 //
 // Numbers are written with %.17g (exact round trip); ±inf as inf / -inf. Host-side only: these
 // functions allocate and use iostreams; never call them from the control cycle.
+//
+// The reader trusts nothing in the text (docs/robustness.md): it reads at most kMaxQpTextBytes,
+// refuses sizes the text cannot hold (every value of q, b, l, u, lb, ub takes at least two bytes)
+// before reading further, grows the triplets with the lines it reads (nothing is reserved from a
+// count), and allocates the dense H, A, C only after every line has been read and checked, and
+// only within kMaxQpDenseEntries. Every number must be finite, except the bounds l, u, lb, ub,
+// which may be ±inf; NaN is refused everywhere.
 #pragma once
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 
 #include "qp/qp_problem.hpp"
 
 namespace mrqp::qp {
+
+/// Largest text the reader reads (a file, or a stream such as /dev/zero), bytes.
+constexpr std::size_t kMaxQpTextBytes = std::size_t{64} << 20;
+/// Largest n·(n + me + m) the reader allocates for the dense H, A and C (128 MiB of doubles).
+constexpr long long kMaxQpDenseEntries = 1LL << 24;
 
 /// A QP as read from or written to text (dense, sized exactly).
 struct QpText {
@@ -43,7 +56,8 @@ struct QpText {
   int posdef = -1;             ///< 1 / 0 from the file, -1 when absent
 };
 
-/// Parses the text format. On failure returns false and sets `error` ("line N: ...").
+/// Parses the text format. On failure returns false and sets `error` ("line N: ...", or "larger
+/// than ... bytes" for a text over kMaxQpTextBytes); readQpFile prefixes "PATH: ".
 bool readQpText(std::istream& in, QpText& out, std::string& error);
 bool readQpFile(const std::string& path, QpText& out, std::string& error);
 
