@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
