@@ -15,6 +15,8 @@ Timeline Timeline::read(const std::string& text, const std::string& file, const 
   const std::vector<YAML::Node> items = r.list(doc["timeline"], "timeline");
   for (std::size_t i = 0; i < items.size(); ++i) {
     const std::string path = scene::item("timeline", i);
+    // Force-control events (mode, user force) are read and played by control/force.
+    if (items[i].IsMap() && items[i]["force_control"]) continue;
     const scene::Map m(r, items[i], path, {"at", "task", "contact", "weight", "target", "active"});
     TimelineEvent e;
     e.at = r.number(m.require("at"), m.at("at"), scene::Bound::NonNegative);
