@@ -3,8 +3,10 @@
 // or walked without bound; and the COLLADA <rotate> axis normalised without overflow.
 #include <catch2/catch.hpp>
 
+#include "mesh_format.hpp"
 #include "mesh_limits.hpp"
 #include "mesh_reader.hpp"
+#include "xml_document.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -172,4 +174,40 @@ TEST_CASE("hostile meshes: ids and references with control characters give one e
   CHECK_THAT(r.error, Contains("<instance_geometry name='g??x'> refers to missing '#missing?id'"));
   CHECK(r.error.find('\n') == std::string::npos);
   CHECK(r.error.find('\r') == std::string::npos);
+}
+
+TEST_CASE("hostile meshes: a node with many children, visited often, hits the scene-element limit",
+          "[mesh][hostile]") {
+  // 25,000 children examined on each of 100 visits: 2,500,000 > 2,000,000, in a 200 KB file
+  std::string s = std::string("<COLLADA>") + kTriangleGeometry + "<library_nodes><node id='wide'>";
+  for (int i = 0; i < 25000; ++i) s += "<extra/>";
+  s += "<instance_geometry url='#g'/></node></library_nodes><library_visual_scenes><visual_scene "
+       "id='s'><node>";
+  for (int i = 0; i < 100; ++i) s += "<instance_node url='#wide'/>";
+  s += "</node></visual_scene></library_visual_scenes></COLLADA>";
+  TempDir dir;
+  const MeshReadResult r = readMeshVertices(write(dir, "wide.dae", s));
+  CHECK_FALSE(r.ok);
+  CHECK_THAT(r.error,
+             Contains("more than 2000000 elements examined in the visual scene (the COLLADA scene limit) at "
+                      "<node id='wide'>"));
+}
+
+TEST_CASE("hostile meshes: the XML reader's node and depth limits, counted exactly", "[mesh][hostile]") {
+  using mrqp::gen::mesh::MeshError;
+  using mrqp::gen::mesh::XmlDocument;
+  using mrqp::gen::mesh::XmlLimits;
+  auto error = [](const std::string& xml, XmlLimits limits) {
+    try {
+      const XmlDocument doc(xml, limits);
+    } catch (const MeshError& e) {
+      return e.problem;
+    }
+    return std::string("(accepted)");
+  };
+  // 4 elements and 6 attributes: 10 nodes
+  const std::string ten = "<a x='1' y='2'>\n<b z='3'/>\n<c u='4' v='5' w='6'><d/></c></a>";
+  CHECK(error(ten, XmlLimits{3, 10}) == "(accepted)");
+  CHECK(error(ten, XmlLimits{3, 9}) == "more than 9 XML elements and attributes at line 3");
+  CHECK(error(ten, XmlLimits{2, 10}) == "<d> nested deeper than 2 levels at line 3");
 }
