@@ -259,3 +259,35 @@ TEST_CASE("limits: a URDF over the size limit is refused from its size, devices 
   CHECK_THROWS_WITH(mrqp::gen::loadUrdfString(text, "stream", ".", {}),
                     StartsWith("stream: larger than the 33554432-byte URDF limit"));
 }
+
+TEST_CASE("limits: collision elements and mimic chains", "[model_gen][limits]") {
+  auto collisions = [](std::size_t n) {
+    std::string s = "<robot name='r'><link name='a'>";
+    for (std::size_t i = 0; i < n; ++i)
+      s += "<collision><geometry><sphere radius='0.1'/></geometry></collision>\n";
+    return s + "</link></robot>";
+  };
+  CHECK(load(collisions(mrqp::gen::kMaxCollisions)).shapes.size() == mrqp::gen::kMaxCollisions);
+  CHECK_THAT(
+      loadError(collisions(mrqp::gen::kMaxCollisions + 1)),
+      Contains("<link name='a'>: more than 10000 <collision> elements in the robot (the collision limit) at "
+               "line 10001"));
+
+  // joints j0 .. j(n-1) in a chain, each mimicking the next one, j(n-1) independent: resolving j0
+  // walks the whole chain (a mimic of a joint earlier in the tree is resolved through it at once)
+  auto mimics = [](std::size_t n) {
+    std::string s = "<robot name='r'><link name='l0'/>";
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string k = std::to_string(i);
+      s += "<link name='l" + std::to_string(i + 1) + "'/><joint name='j" + k +
+           "' type='continuous'><parent link='l" + k + "'/><child link='l" + std::to_string(i + 1) + "'/>" +
+           (i + 1 < n ? "<mimic joint='j" + std::to_string(i + 1) + "' multiplier='1'/>" : "") + "</joint>";
+    }
+    return s + "</robot>";
+  };
+  const KinematicTree t = load(mimics(mrqp::gen::kMaxMimicChain));
+  CHECK(t.nv == 1);
+  CHECK(t.bodies[1].joint.mimicked == "j63");
+  CHECK_THAT(loadError(mimics(mrqp::gen::kMaxMimicChain + 1)),
+             Contains("joint 'j0': mimic chain longer than 64 joints (the mimic chain limit)"));
+}
