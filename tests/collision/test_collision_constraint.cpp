@@ -6,6 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -194,4 +196,47 @@ TEST_CASE("Two arms driven into each other from random separated starts: feasibl
   }
   CHECK(runs >= 4);
   WARN(runs << " random starts; smallest distance between the arms " << worst << " m (δs = 0.03)");
+}
+
+TEST_CASE("Bad collision items and geometry files are named FILE:LINE: FIELD", "[collision]") {
+  const std::string head = R"(
+entities:
+  - {name: arm, model: panda}
+  - {name: door, model: door}
+collisions:
+)";
+  auto message = [&](const std::string& item) {
+    try {
+      loadText(head + item);
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(
+      message("  - {entities: [arm], links_a: [panda_link99]}\n"),
+      Catch::StartsWith("test.yaml:6: collisions[0].links_a: link 'panda_link99' has no collision shapes"));
+  CHECK_THAT(
+      message("  - {entities: [arm], pairs: [{a: panda_link1, b: panda_link2}]}\n"),
+      Catch::StartsWith("test.yaml:6: collisions[0].pairs[0]: no enabled pair between 'panda_link1' and "
+                        "'panda_link2'"));
+  CHECK_THAT(
+      message("  - {entities: [arm, door]}\n"),
+      Catch::StartsWith("test.yaml:6: collisions[0].geometry: no collision geometry for entity 'door'"));
+  CHECK_THAT(message("  - {entities: [arm], interaction: 0.01, security: 0.02}\n"),
+             Catch::Contains("collisions[0].interaction: expected a number > security"));
+  CHECK_THAT(message("  - {entities: [arm, door, other]}\n"),
+             Catch::Contains("collisions[0].entities: expected one entity (self-collision) or two"));
+  // A geometry file with a shape of two kinds.
+  const std::string bad =
+      std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/mrqp_bad_geometry.yaml";
+  {
+    std::FILE* f = std::fopen(bad.c_str(), "w");
+    REQUIRE(f != nullptr);
+    std::fputs("links:\n  panda_link1:\n    - {sphere: 0.1, box: [1, 1, 1]}\n", f);
+    std::fclose(f);
+  }
+  CHECK_THAT(message("  - {entities: [arm], geometry: {arm: " + bad + "}}\n"),
+             Catch::StartsWith(
+                 bad + ":3: links.panda_link1[0]: expected exactly one of sphere, capsule, box, hull"));
 }

@@ -216,6 +216,7 @@ void buildOne(const SceneSpec& s, const CollisionSpec& c, const std::string& nam
   for (const auto& x : c.exclude) excluded.insert(collision::linkPair(x.first, x.second));
   std::set<std::pair<int, int>> seen;  // frame pairs already made (self: a/b symmetric)
   std::vector<problem::CollisionPair> pairs;
+  std::vector<bool> used(c.pairs.size(), false);  // each `pairs` entry must name an enabled pair
   for (const LinkRef& la : links[0]) {
     for (const LinkRef& lb : links[1]) {
       if (self) {
@@ -226,8 +227,12 @@ void buildOne(const SceneSpec& s, const CollisionSpec& c, const std::string& nam
       }
       if (excluded.count(collision::linkPair(la.link, lb.link))) continue;
       CollisionGains g = c.gains;
-      for (const CollisionPairSpec& ps : c.pairs) {
-        if (collision::linkPair(ps.a, ps.b) == collision::linkPair(la.link, lb.link)) g = ps.gains;
+      for (std::size_t o = 0; o < c.pairs.size(); ++o) {
+        const CollisionPairSpec& ps = c.pairs[o];
+        if (collision::linkPair(ps.a, ps.b) == collision::linkPair(la.link, lb.link)) {
+          g = ps.gains;
+          used[o] = true;
+        }
       }
       for (int i = 0; i < la.count; ++i) {
         for (int j = 0; j < lb.count; ++j) {
@@ -240,6 +245,13 @@ void buildOne(const SceneSpec& s, const CollisionSpec& c, const std::string& nam
           pairs.push_back(pr);
         }
       }
+    }
+  }
+  for (std::size_t o = 0; o < c.pairs.size(); ++o) {
+    if (!used[o]) {
+      BuildContext::fail(c.pairs[o].source, field + ".pairs[" + std::to_string(o) + "]",
+                         "no enabled pair between '" + c.pairs[o].a + "' and '" + c.pairs[o].b +
+                             "' (unknown, adjacent, disabled or excluded)");
     }
   }
   if (pairs.empty())
