@@ -4,7 +4,10 @@
 // bench_controller --dump-qp DIR --dump-cycles 0,1,500 before tasks and constraints became
 // objects. The same scenes, run the same way, must assemble the same QPs: same sizes, every entry
 // within 1e-12 of the recorded one relative to max(|recorded entry|, 1e-3 · largest |entry| of that
-// matrix); infinite bounds must match exactly.
+// matrix) at cycles 0 and 1, within 1e-9 at cycle 500; infinite bounds must match exactly. Cycle
+// 500's state carries the rounding of 500 closed-loop model evaluations: a change in the order of
+// the model code's operations (the CRBA in one frame at the root) moves it by ~3e-12 without any
+// change of the problem's assembly, which the first two cycles pin to rounding.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -21,6 +24,7 @@ using mrqp::qp::QpText;
 namespace {
 
 constexpr double kRelTol = 1e-12;
+constexpr double kRelTolAfterRun = 1e-9;  ///< cycle 500 (see the top of the file)
 
 /// Largest scaled difference between two matrices of the same size (∞ when sizes or infinities
 /// differ).
@@ -98,7 +102,7 @@ void runScene(const std::string& name) {
       CHECK(got.n == want.n);
       CHECK(got.me == want.me);
       CHECK(got.mi == want.mi);
-      CHECK(worst <= kRelTol);
+      CHECK(worst <= (k <= 1 ? kRelTol : kRelTolAfterRun));
     }
     REQUIRE(p.solve() == QpStatus::Optimal);
     p.integrate(scene.settings.dt);
