@@ -19,6 +19,9 @@
 #include <vector>
 
 #include "alloc_counter.hpp"
+#ifdef MRQP_RUN_HAVE_COLLISION
+#include "collision/collision_watch.hpp"
+#endif
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
 #include "loop/emulated_rig.hpp"
@@ -179,6 +182,23 @@ int runMain(int argc, char** argv) {
   if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
   std::vector<double> cycle_us(static_cast<std::size_t>(cycles), 0.0);
   run::MotionTrack motion(*plant, p, static_cast<double>(cycles) * dt, 30.0);
+#ifdef MRQP_RUN_HAVE_COLLISION
+  // summary.json's min_distance_m: every collision pair measured on the plant's state between
+  // cycles, on a second problem of the scene (docs/collision.md).
+  scene::Scene shadow = scene::buildScene(spec, models);
+  collision::CollisionWatch watch(p, *shadow.problem);
+  std::vector<int> handles;
+  for (int i = 0; i < p.entityCount(); ++i) handles.push_back(plant->entityHandle(p.entity(i).name()));
+  auto plantState = [&](int i, Eigen::VectorXd& q, Eigen::VectorXd& v) {
+    const int h = handles[static_cast<std::size_t>(i)];
+    if (h >= 0) {
+      plant->entityState(h, q, v);
+    } else {  // not simulated by the plant: the controller's estimate
+      q = p.entity(i).q();
+      v = p.entity(i).v();
+    }
+  };
+#endif
 
   if (!o.quiet) {
     std::printf("mrqp-run: %s: %d entities, %zu tasks, %zu contacts; plant %s, %s; %ld cycles of %g ms\n",
@@ -236,6 +256,9 @@ int runMain(int argc, char** argv) {
     ctrl.cycle(now);
     run::armAllocationCounter(false);
     faults.afterCycle();
+#ifdef MRQP_RUN_HAVE_COLLISION
+    watch.measure(plantState);
+#endif
     if (o.plots && motion.due(static_cast<double>(k) * dt)) motion.capture(static_cast<double>(k) * dt);
     if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
     const drivers::TimeNs total = ctrl.lastTiming().total_ns;
@@ -298,6 +321,12 @@ int runMain(int argc, char** argv) {
     s.bus_load.emplace_back(rh.buses[b].decl.name, load);
   }
   s.faults = faults.records();
+#ifdef MRQP_RUN_HAVE_COLLISION
+  if (watch.enabled()) {
+    s.min_distance_m = watch.minDistance();
+    s.delta_s_m = watch.securityDistance();
+  }
+#endif
   if (!run::writeSummaryJson(s, o.out + "/summary.json"))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
   run::printSummary(s);

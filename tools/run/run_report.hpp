@@ -2,6 +2,7 @@
 // (gnuplot over the log).
 #pragma once
 
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -24,6 +25,10 @@ struct RunSummary {
   std::vector<std::pair<std::string, double>> base_estimate_error_m;
   std::vector<std::pair<std::string, double>> bus_load;
   std::vector<loop::FaultRecord> faults;
+  /// Collision pairs (docs/collision.md): smallest distance over the run, measured on the plant's
+  /// state, and the smallest security distance δs; NaN (left out of the file) without collisions.
+  double min_distance_m = std::numeric_limits<double>::quiet_NaN();
+  double delta_s_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Percentile p (0..1) of sorted values (nearest rank).
