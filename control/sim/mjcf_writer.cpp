@@ -206,6 +206,12 @@ struct Writer {
   void linkGeoms(std::ostream& out, std::size_t entity_index, const std::string& entity,
                  const urdf::ModelInterface& robot, const urdf::Link& link, const std::string& urdf_dir,
                  const std::string& body) {
+    // A plant-section shape with `replace` stands for the link's own geometry.
+    for (const GeomSpec& g : plant.geoms) {
+      if (g.replace && g.entity == entity && g.link == link.name) {
+        return;
+      }
+    }
     bool hull_done = false;
     for (const urdf::CollisionSharedPtr& c : link.collision_array) {
       if (!c || !c->geometry) {
@@ -564,7 +570,7 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
         const Eigen::Quaterniond q(weld.relative.rotation());
         eq << " relpose=\"" << vec(weld.relative.translation()) << " " << quat(q) << "\"";
       }
-      eq << "/>\n";
+      eq << " solref=\"" << num(plant.grasp_timeconst) << " " << num(plant.grasp_dampratio) << "\"/>\n";
       out.welds.push_back(weld);
     }
   }

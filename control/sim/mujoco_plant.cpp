@@ -44,7 +44,8 @@ void silentWarning(const char* /*message*/) {}
 }  // namespace
 
 MujocoPlant::MujocoPlant(const scene::SceneSpec& scene, const PlantSpec& plant,
-                         const scene::ModelRegistry* registry) {
+                         const scene::ModelRegistry* registry)
+    : drives_(plant.drives) {
   mju_user_warning = silentWarning;
   mjcf_ = writeMjcf(scene, plant);
   load(mjcf_.xml);
@@ -71,6 +72,39 @@ MujocoPlant::MujocoPlant(const scene::SceneSpec& scene, const PlantSpec& plant,
     load(mjcf_.xml);
     placeInitialState(scene, registry);
   }
+  if (plant.settle > 0.0) {
+    settle(plant.settle);
+  }
+}
+
+void MujocoPlant::settle(double duration) {
+  // Every actuated joint held where the scene puts it (the drive's holding servo with its
+  // integral action: it ends there exactly, carrying its load); floating bases, objects and
+  // mechanisms settle on their contacts, grasps and springs. The holding commands stay until
+  // the drives send theirs (their integrated torque carries over: no sag when they take over).
+  for (Joint& j : joints_) {
+    if (!j.actuated) {
+      continue;
+    }
+    loop::ServoCommand c;
+    c.position = data_->qpos[j.qpos];
+    c.kp = drives_.hold_kp;
+    c.kd = drives_.hold_kd;
+    c.torque_limit = j.effort;
+    c.enabled = true;
+    j.command = c;
+    j.ramp_end = 0.0;
+  }
+  const long steps = std::max(1L, std::lround(duration / model_->opt.timestep));
+  for (long i = 0; i < steps; ++i) {
+    applyServos(true);
+    mj_step(model_, data_);
+  }
+  data_->time = 0.0;
+  for (Joint& j : joints_) {
+    j.ramp_end = 0.0;
+  }
+  updateDerived();
 }
 
 MujocoPlant::~MujocoPlant() {
@@ -144,6 +178,8 @@ void MujocoPlant::placeInitialState(const scene::SceneSpec& scene, const scene::
     // The joint order and neutral values: the generated model's when the registry has it.
     std::vector<std::string> order = me.joints;
     std::vector<double> neutral;
+    std::vector<bool> actuated;  // the generated model's own flags (joints with an effort limit)
+    std::vector<double> effort;
     std::unique_ptr<problem::Entity> model_entity;
     if (registry != nullptr && !me.rigid_object && registry->has(me.model)) {
       model_entity = registry->make(me.model, me.name);
@@ -160,6 +196,8 @@ void MujocoPlant::placeInitialState(const scene::SceneSpec& scene, const scene::
       for (int k = 0; k < model_entity->nv() - offset; ++k) {
         order.emplace_back(model_entity->jointName(k));
         neutral.push_back(q0(model_entity->qIndexOfV(k + offset)));
+        actuated.push_back(model_entity->actuated()[static_cast<std::size_t>(k + offset)] != 0);
+        effort.push_back(model_entity->effortLimit()(k + offset));
       }
       if (order.size() + me.mimics.size() != me.joints.size()) {
         throw std::runtime_error(where(spec.source) + "entities." + me.name + ": the generated model has " +
@@ -197,6 +235,24 @@ void MujocoPlant::placeInitialState(const scene::SceneSpec& scene, const scene::
         q = it->second;
       }
       data_->qpos[j.qpos] = q;
+      // Actuated as the scene builder decides it (entity keys actuation, actuated, passive).
+      bool act = k < actuated.size() ? actuated[k] : true;
+      if (spec.actuation == "all") {
+        act = true;
+      } else if (spec.actuation == "none" || spec.actuation == "list") {
+        act = false;
+      }
+      const auto listed = [&](const std::vector<std::string>& names) {
+        return std::find(names.begin(), names.end(), order[k]) != names.end();
+      };
+      if (listed(spec.actuated_joints)) {
+        act = true;
+      }
+      if (listed(spec.passive_joints)) {
+        act = false;
+      }
+      j.actuated = act && j.actuator >= 0 && !me.rigid_object;
+      j.effort = k < effort.size() && effort[k] > 0.0 ? effort[k] : 1e9;
       const auto sp = spec.springs.find(order[k]);
       if (sp != spec.springs.end()) {
         j.spring_k = sp->second.stiffness;
@@ -317,20 +373,46 @@ double MujocoPlant::jointTorque(int joint) const noexcept {
 }
 
 void MujocoPlant::setServo(int joint, const loop::ServoCommand& command) noexcept {
-  joints_[static_cast<std::size_t>(joint)].command = command;
+  Joint& j = joints_[static_cast<std::size_t>(joint)];
+  const loop::ServoCommand& previous = j.command;
+  j.ramp_end = data_->time;
+  // Interpolation: a cyclic setpoint whose velocity is the rate of its position since the
+  // previous one is reached by a ramp over that period (T = Δposition / velocity), not a step.
+  if (drives_.interpolate && command.enabled && previous.enabled && command.velocity != 0.0 &&
+      command.kp == previous.kp) {
+    const double period = (command.position - previous.position) / command.velocity;
+    if (std::isfinite(period) && period > 0.0 && period <= 0.1) {
+      j.ramp_end = data_->time + period;
+    }
+  }
+  if (!command.enabled) {
+    j.integral_torque = 0.0;  // a drive switched off forgets its integral
+  }
+  j.command = command;
 }
 
-void MujocoPlant::applyServos() noexcept {
+void MujocoPlant::applyServos(bool integrate) noexcept {
   // The drive's law as the joint's actuator: force = b0 + b1 q + b2 q̇, clamped to ±limit
   // (see mjcf_writer.cpp). The scene's springs are applied forces.
   for (Joint& j : joints_) {
     const double q = data_->qpos[j.qpos];
     const double v = data_->qvel[j.dof];
     const loop::ServoCommand& c = j.command;
+    const double q_ref = c.position - c.velocity * std::max(0.0, j.ramp_end - data_->time);
     if (j.actuator >= 0) {
       mjtNum* bias = model_->actuator_biasprm + mjNBIAS * j.actuator;
       mjtNum* range = model_->actuator_forcerange + 2 * j.actuator;
-      const double b0 = c.torque + c.kp * c.position + c.kd * c.velocity;
+      // Integral action of a position servo: ∫ kp / Ti (q_ref − q) dt, clamped to the limit.
+      if (drives_.integral_time > 0.0 && c.enabled && c.kp > 0.0) {
+        if (integrate) {
+          const double lim = std::abs(c.torque_limit);
+          j.integral_torque += c.kp / drives_.integral_time * (q_ref - q) * model_->opt.timestep;
+          j.integral_torque = std::min(std::max(j.integral_torque, -lim), lim);
+        }
+      } else {
+        j.integral_torque = 0.0;
+      }
+      const double b0 = c.torque + c.kp * q_ref + c.kd * c.velocity + j.integral_torque;
       const bool ok = c.enabled && std::isfinite(b0) && std::isfinite(c.kp) && std::isfinite(c.kd) &&
                       std::isfinite(c.torque_limit);
       bias[0] = ok ? b0 : 0.0;
@@ -355,14 +437,14 @@ void MujocoPlant::step(double dt) noexcept {
   const double n = std::round(dt / model_->opt.timestep);
   const long steps = n < 1.0 ? 1 : static_cast<long>(n);
   for (long i = 0; i < steps; ++i) {
-    applyServos();
+    applyServos(true);
     mj_step(model_, data_);
   }
   updateDerived();
 }
 
 void MujocoPlant::updateDerived() noexcept {
-  applyServos();
+  applyServos(false);
   mj_forward(model_, data_);
   mj_rnePostConstraint(model_, data_);
 }

@@ -5,7 +5,9 @@
 //   τ = clamp(τ_ff + kp (q_ref − q) + kd (v_ref − v), ±torque_limit),
 // as a MuJoCo actuator with an affine bias; the drive's damping is taken implicitly by the
 // integrator (as joint damping with semi-implicit Euler, in the actuator with MuJoCo's implicit
-// integrator), so stiff drives stay stable at the plant's step. With Euler the −kd q̇ part is
+// integrator), so stiff drives stay stable at the plant's step. The plant section's `drives` add what a
+// real drive's firmware does between cyclic setpoints: linear interpolation of the position
+// reference and integral action; `settle` starts the world at rest (docs/mujoco.md). With Euler the −kd q̇ part is
 // outside the clamp. The scene's joint springs
 // −(K q + C q̇ + O) act on their joints; grasps of the plant section are welds; URDF mimic joints
 // follow their master through joint equalities.
@@ -97,6 +99,12 @@ class MujocoPlant final : public loop::Plant {
   struct Joint {
     int qpos = 0, dof = 0, actuator = -1;
     loop::ServoCommand command;
+    // The drive's interpolator (PlantSpec::drives.interpolate): the position reference reaches
+    // command.position at MuJoCo time ramp_end, moving at command.velocity until then.
+    double ramp_end = 0.0;
+    double integral_torque = 0.0;  // the drive's integral action, N·m
+    bool actuated = false;         // the scene's actuation: a drive holds the joint
+    double effort = 1e9;           // the model's effort limit, N·m
     double spring_k = 0.0, spring_c = 0.0, spring_o = 0.0;
   };
   struct Entity {
@@ -113,7 +121,11 @@ class MujocoPlant final : public loop::Plant {
 
   void load(const std::string& xml);
   void placeInitialState(const scene::SceneSpec& scene, const scene::ModelRegistry* registry);
-  void applyServos() noexcept;
+  /// The drives' law on every actuator; `integrate`: inside a MuJoCo step (the integral action
+  /// advances by one time step).
+  void applyServos(bool integrate) noexcept;
+  /// PlantSpec::settle: every actuated joint held at its initial value, the rest free.
+  void settle(double duration);
   void placeMimics() noexcept;
   void updateDerived() noexcept;
 
@@ -124,6 +136,7 @@ class MujocoPlant final : public loop::Plant {
   std::vector<Entity> entities_;
   std::vector<Mimic> mimics_;
   std::vector<int> sensor_body_;  // per body: the body whose subtree a sensor there measures
+  DriveSpec drives_;
 };
 
 }  // namespace mrqp::sim

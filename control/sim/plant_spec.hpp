@@ -39,6 +39,10 @@ struct GeomSpec {
   /// box: full edge lengths x y z; sphere: radius; cylinder and capsule: radius, length (along z).
   Eigen::Vector3d size = Eigen::Vector3d::Zero();
   scene::PoseSpec pose;  ///< in the link frame
+  /// true: the link's own collision geometry (URDF shapes, meshes, reference hulls) is left out
+  /// and the link collides with the plant section's shapes only (e.g. a foot sole that matches
+  /// the scene's contact surface).
+  bool replace = false;
   scene::Source source;
 };
 
@@ -58,6 +62,20 @@ struct SensorNoiseSpec {
   NoiseSpec accelerometer;   ///< m/s² (IMU)
 };
 
+/// What the emulated drives' inner loop adds to the servo law of a command (docs/mujoco.md,
+/// "Drives"), as the firmware of a real position drive does it between two cyclic setpoints.
+struct DriveSpec {
+  /// s: integral action of the position servo (ki = kp / integral_time, the integrated torque
+  /// clamped to the torque limit): no steady-state error under a constant load (gravity); 0: none.
+  double integral_time = 0.0;
+  /// Linear interpolation of cyclic setpoints: a command whose velocity is the rate of its
+  /// position since the previous one (CSP: Δtarget / SYNC period) ramps the reference from the
+  /// previous position to the new one over that period instead of a step.
+  bool interpolate = false;
+  double hold_kp = 20000.0;  ///< N·m/rad: the holding servo of the settling (see PlantSpec::settle)
+  double hold_kd = 300.0;    ///< N·m·s/rad
+};
+
 struct PlantSpec {
   bool present = false;             ///< the scene has a plant section
   std::string simulator = "ideal";  ///< "ideal" or "mujoco" (default "mujoco" in a section)
@@ -66,10 +84,19 @@ struct PlantSpec {
   /// (fast); "implicit": MuJoCo's implicit integrator (every velocity derivative, about three
   /// times slower on a humanoid).
   std::string integrator = "euler";
+  DriveSpec drives;
+  /// s of simulation before t = 0 with every actuated joint held at its initial value by a
+  /// holding servo (drives.hold_kp, hold_kd and the drives' integral action) and every free body and
+  /// floating base settling on its contacts; the clock then restarts at 0. 0: none.
+  double settle = 0.0;
   ContactParams contact;  ///< every pair without its own entry
   std::vector<PairSpec> pairs;
   std::vector<GeomSpec> geoms;
   std::vector<std::string> grasps;  ///< scene contacts held as rigid welds
+  /// Softness of the grasps' welds (MuJoCo's solref of an equality: time constant, damping
+  /// ratio; MuJoCo's default 0.02 s, 1): a hand's pads and fingers are not rigid.
+  double grasp_timeconst = 0.02;
+  double grasp_dampratio = 1.0;
   SensorNoiseSpec noise;
   std::uint64_t seed = 1;
   std::vector<std::string> package_path;  ///< where package:// meshes are looked up

@@ -43,7 +43,7 @@ scene::PoseSpec readPose(const Reader& r, const YAML::Node& n, const std::string
 }
 
 GeomSpec readGeom(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(r, n, path, {"entity", "link", "type", "size", "pose"});
+  const Map m(r, n, path, {"entity", "link", "type", "size", "pose", "replace"});
   GeomSpec g;
   g.source = m.source();
   g.entity = m.name("entity");
@@ -80,6 +80,7 @@ GeomSpec readGeom(const Reader& r, const YAML::Node& n, const std::string& path)
   if (const YAML::Node* p = m.find("pose")) {
     g.pose = readPose(r, *p, m.at("pose"));
   }
+  g.replace = m.boolean("replace", false);
   return g;
 }
 
@@ -92,8 +93,8 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
   }
   const std::string path = "plant";
   const Map m(r, *node, path,
-              {"simulator", "timestep", "integrator", "seed", "contact", "pairs", "geoms", "grasps", "noise",
-               "package_path"});
+              {"simulator", "timestep", "integrator", "seed", "drives", "settle", "contact", "pairs", "geoms",
+               "grasps", "grasp_softness", "noise", "package_path"});
   s.present = true;
   s.source = m.source();
   s.simulator = "mujoco";
@@ -117,6 +118,22 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
     }
   }
   s.seed = static_cast<std::uint64_t>(m.integer("seed", 0, INT_MAX, 1));
+  if (const YAML::Node* d = m.find("drives")) {
+    const Map dm(r, *d, m.at("drives"), {"integral_time", "interpolate", "hold_kp", "hold_kd"});
+    s.drives.integral_time = dm.number("integral_time", Bound::NonNegative, s.drives.integral_time);
+    if (s.drives.integral_time > 0.0 && s.drives.integral_time < 2.0 * s.timestep) {
+      r.fail(dm.require("integral_time"), dm.at("integral_time"),
+             "must be 0 (none) or at least two time steps (" + scene::formatNumber(2.0 * s.timestep) + " s)");
+    }
+    s.drives.interpolate = dm.boolean("interpolate", s.drives.interpolate);
+    s.drives.hold_kp = dm.number("hold_kp", Bound::Positive, s.drives.hold_kp);
+    s.drives.hold_kd = dm.number("hold_kd", Bound::NonNegative, s.drives.hold_kd);
+  }
+  s.settle = m.number("settle", Bound::NonNegative, s.settle);
+  if (s.settle > 10.0) {
+    r.fail(m.require("settle"), m.at("settle"),
+           "expected at most 10 s, got " + scene::formatNumber(s.settle));
+  }
   const ContactParams defaults;
   if (const YAML::Node* c = m.find("contact")) {
     s.contact = readContact(r, *c, m.at("contact"), defaults, s.timestep);
@@ -166,6 +183,15 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
   }
   if (const YAML::Node* g = m.find("grasps")) {
     s.grasps = r.names(*g, m.at("grasps"));
+  }
+  if (const YAML::Node* g = m.find("grasp_softness")) {
+    const Map gm(r, *g, m.at("grasp_softness"), {"timeconst", "dampratio"});
+    s.grasp_timeconst = gm.number("timeconst", Bound::Positive, s.grasp_timeconst);
+    s.grasp_dampratio = gm.number("dampratio", Bound::Positive, s.grasp_dampratio);
+    if (s.grasp_timeconst < 2.0 * s.timestep) {
+      r.fail(gm.require("timeconst"), gm.at("timeconst"),
+             "must be at least two time steps (" + scene::formatNumber(2.0 * s.timestep) + " s)");
+    }
   }
   if (const YAML::Node* n = m.find("noise")) {
     const Map nm(
