@@ -14,6 +14,22 @@ int hexDigit(char c) {
   return -1;
 }
 
+// candump -L writes "%lld.%06ld": digits, a point, digits. Nothing else is a timestamp (no sign,
+// exponent, "nan" or "inf"), and at most 12 + 9 digits keep it finite and exactly printable.
+bool validTimestamp(const std::string& ts) {
+  const std::size_t point = ts.find('.');
+  const std::size_t int_digits = point == std::string::npos ? ts.size() : point;
+  const std::size_t frac_digits = point == std::string::npos ? 0 : ts.size() - point - 1;
+  if (int_digits == 0 || int_digits > 12 || frac_digits > 9 ||
+      (point != std::string::npos && frac_digits == 0)) {
+    return false;
+  }
+  for (std::size_t k = 0; k < ts.size(); ++k) {
+    if (k != point && (ts[k] < '0' || ts[k] > '9')) return false;
+  }
+  return true;
+}
+
 bool validFdLength(unsigned n) {
   return n <= 8 || n == 12 || n == 16 || n == 20 || n == 24 || n == 32 || n == 48 || n == 64;
 }
@@ -34,12 +50,11 @@ bool parseCandumpLine(const std::string& line, LogFrame& out, std::string& error
     return false;
   }
   const std::string ts = line.substr(1, close - 1);
-  char* end = nullptr;
-  out.time = std::strtod(ts.c_str(), &end);
-  if (ts.empty() || *end != '\0') {
-    error = "bad timestamp '" + ts + "'";
+  if (!validTimestamp(ts)) {
+    error = "bad timestamp '" + ts + "' (expected seconds as digits, e.g. 1700000000.123456)";
     return false;
   }
+  out.time = std::strtod(ts.c_str(), nullptr);
   i = close + 1;
   while (i < line.size() && line[i] == ' ') ++i;
   const size_t ifaceEnd = line.find(' ', i);
@@ -68,6 +83,14 @@ bool parseCandumpLine(const std::string& line, LogFrame& out, std::string& error
       return false;
     }
     raw = raw * 16u + static_cast<unsigned>(d);
+  }
+  if (id.size() == 3 && raw > 0x7FFu) {
+    error = "identifier '" + id + "' is above 0x7FF, the largest 11-bit identifier";
+    return false;
+  }
+  if (id.size() == 8 && raw > 0x3FFFFFFFu) {
+    error = "identifier '" + id + "' has bits above the 29-bit identifier and the error flag";
+    return false;
   }
   out.raw_id = raw;
   out.extended = id.size() == 8;

@@ -1,16 +1,22 @@
 // mrqp-candecode: decodes a `candump -L` log into per-device CSV traces (docs/protocol.md).
 #include <sys/stat.h>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "candump_log.hpp"
+#include "csv_writer.hpp"
 #include "frame_decoder.hpp"
+#include "line_reader.hpp"
 
 namespace {
 
@@ -23,7 +29,10 @@ const char* kUsage =
     "  --increments-per-rev N   arm encoder scaling (default 524288)\n"
     "  --rated-torque-mnm N     arm torque scaling (default 1000)\n"
     "  --split DIR         also write one CSV per device into DIR\n"
-    "Prints CSV rows 't,iface,device,message,field,value' on stdout and a summary on stderr.\n";
+    "Prints CSV rows 't,iface,device,message,field,value' (RFC 4180) on stdout and a summary on\n"
+    "stderr. Exit status: 0 when frames were read and every line was readable, 3 when some lines\n"
+    "were not, 1 when no frame was read (empty, garbage or binary input) or on an error, 2 for a\n"
+    "bad command line.\n";
 
 bool parseList(const std::string& s, std::set<unsigned>& out) {
   size_t i = 0;
@@ -50,18 +59,34 @@ bool parseList(const std::string& s, std::set<unsigned>& out) {
   return !out.empty();
 }
 
-void printRow(std::ostream& o, const mrqp::tools::TraceRow& r, bool withDevice) {
-  char t[32], v[40];
-  std::snprintf(t, sizeof t, "%.6f", r.time);
-  std::snprintf(v, sizeof v, "%.9g", r.value);
-  o << t << ',' << r.iface << ',';
-  if (withDevice) o << r.device << ',';
-  o << r.message << ',' << r.field << ',' << v << '\n';
+/// A positive 32-bit scaling factor, or 0 when `text` is not one.
+uint32_t parseScale(const std::string& text) {
+  if (text.empty() || text[0] < '0' || text[0] > '9') return 0;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 0);
+  if (*end != '\0' || errno == ERANGE || v > 0xFFFFFFFFull) return 0;
+  return static_cast<uint32_t>(v);
 }
+
+int run(int argc, char** argv);
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "mrqp-candecode: " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "mrqp-candecode: unknown error\n";
+  }
+  return 1;
+}
+
+namespace {
+
+int run(int argc, char** argv) {
   mrqp::tools::DeviceMap map;
   std::string input, split;
   for (int i = 1; i < argc; ++i) {
@@ -89,9 +114,9 @@ int main(int argc, char** argv) {
     else if (a == "--hand-board")
       list(map.hand_boards);
     else if (a == "--increments-per-rev")
-      map.arm_scale.increments_per_rev = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
+      map.arm_scale.increments_per_rev = parseScale(value());
     else if (a == "--rated-torque-mnm")
-      map.arm_scale.rated_torque_mNm = static_cast<uint32_t>(std::strtoul(value().c_str(), nullptr, 0));
+      map.arm_scale.rated_torque_mNm = parseScale(value());
     else if (a == "--split")
       split = value();
     else if (a == "-h" || a == "--help") {
@@ -109,7 +134,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (map.arm_scale.increments_per_rev == 0 || map.arm_scale.rated_torque_mNm == 0) {
-    std::cerr << "mrqp-candecode: scaling values must be positive\n";
+    std::cerr << "mrqp-candecode: scaling values must be integers in [1, 4294967295]\n";
     return 2;
   }
   std::ifstream file;
@@ -127,35 +152,68 @@ int main(int argc, char** argv) {
   }
   std::map<std::string, std::ofstream> perDevice;
   mrqp::tools::DecodeCounters counters;
-  long lineNo = 0, badLines = 0;
+  long badLines = 0;
+  bool binary = false;
   std::string line, error;
   std::vector<mrqp::tools::TraceRow> rows;
+  mrqp::tools::LineReader reader(in);
   std::cout << "t,iface,device,message,field,value\n";
-  while (std::getline(in, line)) {
-    ++lineNo;
+  for (;;) {
+    const mrqp::tools::LineStatus status = reader.next(line);
+    if (status == mrqp::tools::LineStatus::End) break;
+    if (status == mrqp::tools::LineStatus::Binary) {
+      std::cerr << "mrqp-candecode: " << input << ":" << reader.lineNumber()
+                << ": a NUL byte: binary data, not a candump -L log\n";
+      binary = true;
+      break;
+    }
+    if (status == mrqp::tools::LineStatus::TooLong) {
+      ++badLines;
+      if (badLines <= 10)
+        std::cerr << "mrqp-candecode: " << input << ":" << reader.lineNumber() << ": line longer than "
+                  << mrqp::tools::LineReader::kMaxLineBytes << " bytes\n";
+      continue;
+    }
     if (line.empty()) continue;
     mrqp::tools::LogFrame f;
     if (!mrqp::tools::parseCandumpLine(line, f, error)) {
       ++badLines;
-      if (badLines <= 10) std::cerr << "mrqp-candecode: " << input << ":" << lineNo << ": " << error << "\n";
+      if (badLines <= 10)
+        std::cerr << "mrqp-candecode: " << input << ":" << reader.lineNumber() << ": " << error << "\n";
       continue;
     }
     rows.clear();
     mrqp::tools::decodeFrame(map, f, rows, counters);
     for (const auto& r : rows) {
-      printRow(std::cout, r, true);
+      mrqp::tools::writeTraceRow(std::cout, r, true);
       if (split.empty()) continue;
       auto it = perDevice.find(r.device);
       if (it == perDevice.end()) {
         it = perDevice.emplace(r.device, std::ofstream(split + "/" + r.device + ".csv")).first;
+        if (!it->second) {
+          std::cerr << "mrqp-candecode: cannot write " << split << "/" << r.device << ".csv\n";
+          return 1;
+        }
         it->second << "t,iface,message,field,value\n";
       }
-      printRow(it->second, r, false);
+      mrqp::tools::writeTraceRow(it->second, r, false);
     }
   }
-  std::cerr << "mrqp-candecode: " << lineNo << " lines, " << counters.frames << " frames, "
+  std::cout.flush();
+  std::cerr << "mrqp-candecode: " << reader.lineNumber() << " lines, " << counters.frames << " frames, "
             << counters.decoded << " decoded, " << counters.malformed << " malformed, " << counters.unknown
             << " unknown, " << counters.error_frames << " error frames, " << badLines
             << " unreadable lines\n";
+  if (!std::cout) {
+    std::cerr << "mrqp-candecode: cannot write the CSV to stdout\n";
+    return 1;
+  }
+  if (binary) return 1;
+  if (counters.frames == 0) {
+    std::cerr << "mrqp-candecode: " << input << ": no frame read: not a candump -L log\n";
+    return 1;
+  }
   return badLines > 0 ? 3 : 0;
 }
+
+}  // namespace
