@@ -13,7 +13,8 @@
 
 using mrqp::qp::QpStatus;
 
-TEST_CASE("two_arms: 3,000 cycles with active collision rows allocate nothing", "[collision][realtime]") {
+TEST_CASE("collision: two_arms: 3,000 cycles with active collision rows allocate nothing",
+          "[collision][realtime]") {
   mrqp::scene::ModelRegistry models;
   mrqp::scene::addBuiltinModels(models);
   mrqp::scene::Scene s = mrqp::scene::loadScene(std::string(MRQP_SCENES_DIR) + "/two_arms.yaml", models);

@@ -50,7 +50,8 @@ collisions:
 
 }  // namespace
 
-TEST_CASE("Self-collision pairs leave out adjacent links and the SRDF's disabled pairs", "[collision]") {
+TEST_CASE("collision: Self-collision pairs leave out adjacent links and the SRDF's disabled pairs",
+          "[collision]") {
   const mrqp::scene::Scene s = loadText(kTwoPandas);
   const CollisionConstraint& self = collisionOf(s, "left_self");
   const auto& e = s.problem->entity(self.body(0).entity);
@@ -84,7 +85,7 @@ TEST_CASE("Self-collision pairs leave out adjacent links and the SRDF's disabled
   CHECK(collisionOf(s, "arms").pairCount() == 13 * 13);
 }
 
-TEST_CASE("The damper row is eq. 24: ḋ from the witness Jacobians matches finite differences",
+TEST_CASE("collision: The damper row is eq. 24: ḋ from the witness Jacobians matches finite differences",
           "[collision]") {
   mrqp::scene::Scene s = loadText(kTwoPandas);
   auto& p = *s.problem;
@@ -159,7 +160,8 @@ TEST_CASE("The damper row is eq. 24: ḋ from the witness Jacobians matches fini
   WARN("d̈ of the witness model " << (ab - aa) << ", finite differences " << dddot_fd);
 }
 
-TEST_CASE("Two arms driven into each other from random separated starts: feasible, apart", "[collision]") {
+TEST_CASE("collision: Two arms driven into each other from random separated starts: feasible, apart",
+          "[collision]") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   int runs = 0;
@@ -198,7 +200,7 @@ TEST_CASE("Two arms driven into each other from random separated starts: feasibl
   WARN(runs << " random starts; smallest distance between the arms " << worst << " m (δs = 0.03)");
 }
 
-TEST_CASE("Bad collision items and geometry files are named FILE:LINE: FIELD", "[collision]") {
+TEST_CASE("collision: Bad collision items and geometry files are named FILE:LINE: FIELD", "[collision]") {
   const std::string head = R"(
 entities:
   - {name: arm, model: panda}

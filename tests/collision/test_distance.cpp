@@ -57,7 +57,8 @@ double segmentDistance(const Vector3d& p1, const Vector3d& q1, const Vector3d& p
 
 }  // namespace
 
-TEST_CASE("Sphere–sphere: distance, witnesses and penetration against the closed form", "[collision]") {
+TEST_CASE("collision: Sphere–sphere: distance, witnesses and penetration against the closed form",
+          "[collision]") {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> u(-1.0, 1.0), ur(0.01, 0.3);
   for (int k = 0; k < 200; ++k) {
@@ -73,7 +74,7 @@ TEST_CASE("Sphere–sphere: distance, witnesses and penetration against the clos
   }
 }
 
-TEST_CASE("Sphere–box: distance to the clamped centre", "[collision]") {
+TEST_CASE("collision: Sphere–box: distance to the clamped centre", "[collision]") {
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> u(-1.0, 1.0), us(0.05, 0.8), ur(0.0, 0.2);
   int outside = 0;
@@ -96,7 +97,7 @@ TEST_CASE("Sphere–box: distance to the clamped centre", "[collision]") {
   CHECK(outside > 200);
 }
 
-TEST_CASE("Box–box: face, edge and vertex nearest features", "[collision]") {
+TEST_CASE("collision: Box–box: face, edge and vertex nearest features", "[collision]") {
   const Shape A = makeBox(Vector3d(0.4, 0.6, 0.8));  // half (0.2, 0.3, 0.4)
   const Shape B = makeBox(Vector3d(0.1, 0.1, 0.1));  // half 0.05
   const Shape C = makeBox(Vector3d(0.2, 0.2, 0.2));  // half 0.1
@@ -142,7 +143,7 @@ TEST_CASE("Box–box: face, edge and vertex nearest features", "[collision]") {
   }
 }
 
-TEST_CASE("Capsule–capsule against the segment–segment closest points", "[collision]") {
+TEST_CASE("collision: Capsule–capsule against the segment–segment closest points", "[collision]") {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-0.6, 0.6), ul(0.0, 0.5), ur(0.01, 0.1);
   int separated = 0;
@@ -170,7 +171,7 @@ TEST_CASE("Capsule–capsule against the segment–segment closest points", "[co
   }
 }
 
-TEST_CASE("Hull–sphere against the exact distance to every hull face", "[collision]") {
+TEST_CASE("collision: Hull–sphere against the exact distance to every hull face", "[collision]") {
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> u(-1.0, 1.0), ur(0.0, 0.1);
   for (int k = 0; k < 40; ++k) {
@@ -193,7 +194,7 @@ TEST_CASE("Hull–sphere against the exact distance to every hull face", "[colli
   }
 }
 
-TEST_CASE("Overlapping cores: negative distance from libccd's MPR", "[collision]") {
+TEST_CASE("collision: Overlapping cores: negative distance from libccd's MPR", "[collision]") {
   const Shape a = makeBox(Vector3d(0.2, 0.2, 0.2)), b = makeSphere(0.05);
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   DistanceResult r;
@@ -208,7 +209,8 @@ TEST_CASE("Overlapping cores: negative distance from libccd's MPR", "[collision]
   CHECK(r.normal.y() == Approx(1.0).margin(1e-6));
 }
 
-TEST_CASE("libccd with margins: closerThan is exact, margins − MPR depth a lower bound", "[collision]") {
+TEST_CASE("collision: libccd with margins: closerThan is exact, margins − MPR depth a lower bound",
+          "[collision]") {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-0.5, 0.5), us(0.05, 0.3);
   int close = 0;

@@ -77,7 +77,7 @@ double facetVolume(const QhullHull& h, std::vector<Eigen::Vector3d>* vertices) {
 
 }  // namespace
 
-TEST_CASE("JVRC-1: the generator's mesh hulls hold the upstream hulls, volumes within 1e-4",
+TEST_CASE("collision: JVRC-1: the generator's mesh hulls hold the upstream hulls, volumes within 1e-4",
           "[collision][hull]") {
   const std::string dir = std::string(MRQP_SHARED_MODELS_DIR) + "/jvrc_description";
   std::vector<std::string> names;
