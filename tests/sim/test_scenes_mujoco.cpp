@@ -38,8 +38,7 @@ TEST_CASE("MuJoCo loop: panda_door opens the door toward its target", "[sim][loo
 namespace {
 
 void checkStartsConsistent(const char* file) {
-  SimLoop s(shippedScene(file), file);
-  REQUIRE(s.plant_spec.simulator == "mujoco");
+  SimLoop s(shippedScene(file), file);  // the MuJoCo plant of its plant section
   REQUIRE(s.boot());
   s.run(10);
   REQUIRE_FALSE(s.ctrl->safeStopped());
