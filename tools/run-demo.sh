@@ -4,8 +4,8 @@
 # (links, joints, nq, nv, mass, timing of the generated functions); then run the multi-robot QP
 # scenes of tools/scenes closed loop and plot them (build/demo/*.png); last, the controller loop
 # (mrqp-run) runs the co-manipulation scene over CAN: simulated buses carrying the emulated drive,
-# F/T and IMU firmware, the plant behind them; summary, log and plots in build/demo/comanipulation,
-# and a rendering of the scene where the build has MuJoCo.
+# F/T and IMU firmware, the MuJoCo plant behind them (the ideal plant in a build without MuJoCo);
+# summary, log, plots and the rendered motion in build/demo/comanipulation.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -64,11 +64,25 @@ echo "== the controller loop over CAN: co-manipulation (mrqp-run, docs/loop.md)"
 cmake --build build/demo -j"$jobs" --target mrqp-run > build/demo-build.log 2>&1 \
   || { tail -40 build/demo-build.log; exit 1; }
 run_out="$root/build/demo/comanipulation"
-./build/demo/tools/run/mrqp-run tools/scenes/comanipulation.yaml --out "$run_out"
+# The MuJoCo plant behind the emulated drives where the build has MuJoCo (mrqp-render is built
+# with it), else the ideal plant.
 if cmake --build build/demo -j"$jobs" --target mrqp-render > build/demo-build.log 2>&1; then
+  plant=mujoco
+else
+  plant=ideal
+  echo "(this build has no MuJoCo: the ideal plant, no rendering of the scene)" >&2
+fi
+echo "   plant: $plant" >&2
+rc=0
+./build/demo/tools/run/mrqp-run tools/scenes/comanipulation.yaml --plant "$plant" --out "$run_out" || rc=$?
+case $rc in
+  0) ;;
+  3) echo "(the controller went to its safe state on the $plant plant: summary.json says why and when;" \
+          "docs/mujoco.md, \"The shipped scenes on MuJoCo\")" >&2 ;;
+  *) exit "$rc" ;;
+esac
+if [ "$plant" = mujoco ]; then
   ./build/demo/tools/render/mrqp-render tools/scenes/comanipulation.yaml --out "$run_out" \
     || echo "(rendering failed: no picture of the scene)" >&2
-else
-  echo "(this build has no MuJoCo: no rendering of the scene)" >&2
 fi
 echo "(summary, log, plots and motion: build/demo/comanipulation/{summary.json,log.csv,*.png,motion.mp4})" >&2
