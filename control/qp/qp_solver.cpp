@@ -35,11 +35,15 @@ inline std::int32_t encodeSrc(std::int32_t kind, int index) noexcept {
 inline std::int32_t srcKind(std::int32_t s) noexcept { return s >> kSrcShift; }
 inline int srcIndex(std::int32_t s) noexcept { return static_cast<int>(s & kSrcMask); }
 
-// x·0 is 0 for a finite x and NaN for ±inf or NaN, so one vectorised sum tells whether every
-// entry is finite (about twice as fast as Eigen's allFinite(), which cannot stop early anyway).
+// A sum of finite entries is finite unless it overflows, and one NaN or ±inf entry makes the sum
+// NaN or ±inf: a finite Σx (one vectorised addition per entry, column by column) proves every
+// entry finite. Otherwise x·0, which is 0 for a finite x and NaN for ±inf or NaN, decides.
 template <class M>
 bool allFinite(const M& m) noexcept {
-  return m.size() == 0 || (m.array() * 0.0).sum() == 0.0;
+  if (m.size() == 0) return true;
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < m.cols(); ++j) sum += m.col(j).sum();
+  return std::isfinite(sum) || (m.array() * 0.0).sum() == 0.0;
 }
 
 template <class V>
@@ -82,7 +86,8 @@ QpSolver::QpSolver(int max_variables, int max_equalities, int max_inequalities, 
       max_n_(max_variables),
       max_me_(max_equalities),
       max_mi_(max_inequalities),
-      max_eq_(max_equalities + max_inequalities + max_variables) {
+      max_eq_(max_equalities + max_inequalities + max_variables),
+      structured_(std::max(0, max_variables), std::max(0, max_equalities), std::max(0, max_inequalities)) {
   if (max_variables < 0 || max_equalities < 0 || max_inequalities < 0)
     throw std::invalid_argument("QpSolver: negative capacity");
   if (max_eq_ > kSrcMask) throw std::invalid_argument("QpSolver: capacity too large");
@@ -196,6 +201,7 @@ QpStatus QpSolver::solve(const QpProblem& problem) noexcept {
   p_ = &problem;
   QpStatus st = validate(problem);
   if (st != QpStatus::Optimal) return finish(st);
+  if (tryStructured()) return finish(QpStatus::Optimal);
   st = classify();
   if (st != QpStatus::Optimal) return finish(st);
   range_space_ = factorHessianProfile();
@@ -221,6 +227,45 @@ QpStatus QpSolver::solve(const QpProblem& problem) noexcept {
     if (st != QpStatus::NumericalFailure || !range_space_) return finish(st);
     range_space_ = false;
   }
+}
+
+// The structured path from the previous active set (docs/qp.md, "6. The structured path"): only
+// for a warm start on a problem of the same size; the remembered constraints that are still
+// inequalities with that side finite form the first guess. True when it answered: x_, the
+// multipliers, info_ and the active set (active_, q_) are then the solution.
+bool QpSolver::tryStructured() noexcept {
+  if (!settings_.structured_path || !settings_.warm_start || warm_n_ != n_ || warm_me_ != me_ ||
+      warm_mi_ != mi_)
+    return false;
+  for (int i = 0; i < mi_; ++i) row_active_[static_cast<std::size_t>(i)] = 0;
+  for (int j = 0; j < n_; ++j) bound_active_[static_cast<std::size_t>(j)] = 0;
+  for (int k = 0; k < warm_count_; ++k) {
+    const Constraint c = warm_[static_cast<std::size_t>(k)];
+    const bool row = c.kind == 0;
+    const double lo = row ? p_->l()(c.index) : p_->xl()(c.index);
+    const double up = row ? p_->u()(c.index) : p_->xu()(c.index);
+    if (lo == up || !std::isfinite(c.side > 0 ? lo : up)) continue;
+    setActive(c, c.side);
+  }
+  info_.structured_tried = true;
+  info_.structured_outcome =
+      structured_.solve(*p_, settings_, row_active_.data(), bound_active_.data(), x_.head(n_), y_.head(me_),
+                        lambda_.head(mi_), mu_.head(n_), info_);
+  if (info_.structured_outcome != StructuredPath::Outcome::Solved) return false;
+  q_ = 0;
+  for (int i = 0; i < mi_; ++i) {
+    const std::int8_t side = row_active_[static_cast<std::size_t>(i)];
+    if (side != 0 && p_->l()(i) != p_->u()(i))
+      active_[static_cast<std::size_t>(q_++)] = Constraint{static_cast<std::int32_t>(i), 0, side};
+  }
+  for (int j = 0; j < n_; ++j) {
+    const std::int8_t side = bound_active_[static_cast<std::size_t>(j)];
+    if (side != 0 && p_->xl()(j) != p_->xu()(j))
+      active_[static_cast<std::size_t>(q_++)] = Constraint{static_cast<std::int32_t>(j), 1, side};
+  }
+  info_.warm_started = true;
+  info_.structured = true;
+  return true;
 }
 
 QpStatus QpSolver::validate(const QpProblem& p) noexcept {

@@ -11,6 +11,10 @@
 //     the original problem, not of a perturbed one).
 //   - Warm start from the previous Optimal active set; on any failure of the warm attempt the
 //     solve restarts cold. Every Optimal answer is re-checked against the KKT conditions.
+//   - Structured path (structured_path.hpp): a warm solve of a QP whose H is block-diagonal first
+//     solves the previous active set directly (bound-fixed variables removed, range space on the
+//     blocks) and keeps the answer only if it passes the optimality and KKT checks; otherwise the
+//     dense path above runs.
 //
 // Real-time: solve() is noexcept and does not allocate, lock, throw or print. All memory is sized
 // from the capacity given at construction.
@@ -23,6 +27,7 @@
 
 #include "qp/qp_problem.hpp"
 #include "qp/qp_status.hpp"
+#include "qp/structured_path.hpp"
 
 namespace mrqp::qp {
 
@@ -35,6 +40,9 @@ struct QpSettings {
   int max_proximal_iterations = 300;
   /// Start from the active set of the previous Optimal solve (if it still fits the problem).
   bool warm_start = true;
+  /// On a warm start with a block-diagonal H, first try the previous active set on the
+  /// structured path (docs/qp.md, "6. The structured path"); false: always the dense path.
+  bool structured_path = true;
   /// A constraint counts as violated when its violation exceeds
   /// primal_tolerance · max(1, |bound|, ‖row‖·‖x‖∞).
   double primal_tolerance = 1e-9;
@@ -75,6 +83,13 @@ struct QpInfo {
   double primal_residual = 0.0;  ///< max absolute violation of A x = b, l ≤ Cx ≤ u, xl ≤ x ≤ xu
   double dual_residual = 0.0;    ///< ‖Hx + g + Aᵀy + Cᵀλ + μ‖∞ (absolute)
   double complementarity = 0.0;  ///< max |multiplier · distance to its bound|
+
+  /// The structured path was tried (a warm start of a problem of the same size).
+  bool structured_tried = false;
+  /// It answered: the previous active set was optimal (iterations 0). When it was tried and did
+  /// not answer, `structured_outcome` says why, and the dense path solved.
+  bool structured = false;
+  StructuredPath::Outcome structured_outcome = StructuredPath::Outcome::NotStructured;
 };
 
 class QpSolver {
@@ -157,6 +172,7 @@ class QpSolver {
   int chooseViolated() noexcept;
   QpStatus checkKkt() noexcept;
   QpStatus finish(QpStatus status) noexcept;
+  bool tryStructured() noexcept;
   void setActive(const Constraint& c, std::int8_t value) noexcept;
   std::int8_t activeSide(const Constraint& c) const noexcept;
 
@@ -213,6 +229,8 @@ class QpSolver {
   Eigen::VectorXd x_, xc_, grad_, d_, z_, r_, cx_, t1_, t2_, t3_;
   Eigen::VectorXd y_, lambda_, mu_;
   bool refined_ = false;
+
+  StructuredPath structured_;
 };
 
 }  // namespace mrqp::qp
