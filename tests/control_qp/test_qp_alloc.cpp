@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "block_qp.hpp"
 #include "counting_allocator.hpp"
 #include "qp/qp_random.hpp"
 #include "qp/qp_solver.hpp"
@@ -107,4 +108,33 @@ TEST_CASE("qp: QP solves allocate nothing", "[qp][realtime]") {
   CHECK(invalid == kRounds * 10 * 2);
   // the warm-start path was exercised and also the fallback from a failed warm start
   CHECK(solver.info().warm_started);
+}
+
+TEST_CASE("qp: the structured path allocates nothing", "[qp][realtime]") {
+  // block-diagonal QPs of the controller's shape in a control loop: most warm solves answered by
+  // the structured path, some (the active set moved, a coupling appeared) by the dense path
+  constexpr int N = 100, ME = 30, MI = 30;
+  std::mt19937_64 rng(41);
+  qptest::BlockQpSpec spec;
+  spec.nq = 50;
+  spec.nl = 40;
+  spec.me = 20;
+  spec.mi = 16;
+  QpProblem p(N, ME, MI);
+  const Eigen::VectorXd x0 = qptest::generateBlockQp(spec, rng, p);
+  QpSolver solver(N, ME, MI);
+  long allocations = 0, structured = 0, fallbacks = 0, optimal = 0;
+  for (int step = 0; step < 400; ++step) {
+    if (step == 200) p.H()(0, 1) = p.H()(1, 0) = 1e-3 * std::sqrt(p.H()(0, 0) * p.H()(1, 1));
+    qptest::perturbBlockQp(step % 20 == 19 ? 0.3 : 1e-3, x0, rng, p);
+    QpStatus s = QpStatus::NotSolved;
+    allocations += allocationsIn([&] { s = solver.solve(p); });
+    optimal += s == QpStatus::Optimal;
+    structured += solver.info().structured;
+    fallbacks += solver.info().structured_tried && !solver.info().structured;
+  }
+  CHECK(allocations == 0);
+  CHECK(optimal == 400);
+  CHECK(structured > 200);
+  CHECK(fallbacks > 0);
 }
