@@ -10,10 +10,12 @@
 //           G (default 10) scales g: the larger, the more constraints are active at the optimum
 // --dump    QP dump files (docs/qp.md, "The QP text format"), e.g. the controller-scene QPs of
 //           DIR/scenes (tests/data/qp/scenes): a directory stands for every *.qp file in it. Each
-//           QP is solved N times cold and N times warm, alternately with one solver, so that both
-//           see the same machine: a warm solve starts from the optimal active set of the cold
-//           solve just before it (the best case of a control loop whose active set does not change
-//           between cycles; the setup — QR of the equalities, reduced Hessian — is redone each time)
+//           QP is solved N times cold, N times warm and N times warm with the structured path
+//           switched off, in turn with one solver, so that all see the same machine: a warm solve
+//           starts from the optimal active set of the cold solve just before it (the best case of a
+//           control loop whose active set does not change between cycles). "warm path" says which
+//           path answered the warm solve: the structured path (previous active set verified
+//           optimal, docs/qp.md) or the dense path (factorisation and active set rebuilt)
 // Without --mm / --random / --dump, --mm and --random run. Times are per solve() call, single thread: wall clock
 // (median, p90, p99, max) and, because a shared machine inflates wall time, the median of the
 // thread's CPU time as well. The 1-minute load average is printed for context.
@@ -23,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -205,14 +208,14 @@ bool expandDumps(const std::vector<std::string>& args, std::vector<std::string>&
 
 int runDumps(const std::vector<std::string>& files, int reps) {
   std::printf(
-      "## QP dumps, each solved %d times cold and %d times warm (from its own optimal active set), "
-      "alternately\n\n",
-      reps, reps);
+      "## QP dumps, each solved %d times cold, %d times warm (from its own optimal active set) and %d "
+      "times warm on the dense path only, in turn\n\n",
+      reps, reps, reps);
   std::printf(
       "| QP | n | eq | ineq | status | cold steps | cold median µs | cold max µs | cold CPU median µs | "
-      "warm steps | warm median µs | warm max µs | warm CPU median µs | active | primal res. | dual res. "
-      "|\n");
-  std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "warm path | warm steps | warm median µs | warm max µs | warm CPU median µs | warm dense median µs | "
+      "active | primal res. | dual res. |\n");
+  std::printf("|---|---:|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   int failures = 0;
   for (const auto& file : files) {
     QpText qp;
@@ -224,8 +227,8 @@ int runDumps(const std::vector<std::string>& files, int reps) {
     QpProblem problem(qp.n, qp.me, qp.mi);
     mrqp::qp::toProblem(qp, problem);
     QpSolver solver(problem);
-    Timing tc, tw;
-    mrqp::qp::QpInfo ci, wi;
+    Timing tc, tw, td;
+    mrqp::qp::QpInfo ci, wi, di;
     for (int k = 0; k < reps; ++k) {
       solver.settings().warm_start = false;
       solveTimed(solver, problem, tc);
@@ -233,17 +236,23 @@ int runDumps(const std::vector<std::string>& files, int reps) {
       solver.settings().warm_start = true;  // from the active set the cold solve just found
       solveTimed(solver, problem, tw);
       wi = solver.info();
+      solver.settings().structured_path = false;  // the same warm solve on the dense path
+      solveTimed(solver, problem, td);
+      di = solver.info();
+      solver.settings().structured_path = true;
     }
-    const bool ok = ci.status == QpStatus::Optimal && wi.status == QpStatus::Optimal;
+    const bool ok =
+        ci.status == QpStatus::Optimal && wi.status == QpStatus::Optimal && di.status == QpStatus::Optimal;
     failures += !ok;
-    const Stats c = stats(tc.wall), cc = stats(tc.cpu), w = stats(tw.wall), wc = stats(tw.cpu);
+    const Stats c = stats(tc.wall), cc = stats(tc.cpu), w = stats(tw.wall), wc = stats(tw.cpu),
+                d = stats(td.wall);
     std::printf(
-        "| %s | %d | %d | %d | %s%s%s | %d | %.0f | %.0f | %.0f | %d | %.0f | %.0f | %.0f | %d | %.1e | %.1e "
-        "|\n",
+        "| %s | %d | %d | %d | %s%s%s | %d | %.0f | %.0f | %.0f | %s | %d | %.0f | %.0f | %.0f | %.0f | %d | "
+        "%.1e | %.1e |\n",
         qp.name.c_str(), qp.n, qp.me, qp.mi, mrqp::qp::toString(ci.status), ok ? "" : " / ",
-        ok ? "" : mrqp::qp::toString(wi.status), ci.iterations, c.median, c.max, cc.median, wi.iterations,
-        w.median, w.max, wc.median, ci.active_inequalities + ci.active_bounds, ci.primal_residual,
-        ci.dual_residual);
+        ok ? "" : mrqp::qp::toString(wi.status), ci.iterations, c.median, c.max, cc.median,
+        wi.structured ? "structured" : "dense", wi.iterations, w.median, w.max, wc.median, d.median,
+        ci.active_inequalities + ci.active_bounds, ci.primal_residual, ci.dual_residual);
   }
   std::printf("\nnot optimal: %d of %zu\n\n", failures, files.size());
   return failures ? 1 : 0;
@@ -251,7 +260,7 @@ int runDumps(const std::vector<std::string>& files, int reps) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   std::string dir = MRQP_QP_DATA_DIR;
   bool mm = false, random = false;
   int reps = 20, steps = 1000;
@@ -318,4 +327,16 @@ int main(int argc, char** argv) {
     std::printf("\n");
   }
   return 0;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "bench_qp", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "bench_qp");
+  }
+  return 1;
 }
