@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -232,7 +233,7 @@ bool parseInt(const char* s, int& out) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   Options opt;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -280,4 +281,16 @@ int main(int argc, char** argv) {
     std::cerr << "mrqp-model-summary: CSV written to " << opt.csv << '\n';
   }
   return 0;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-model-summary", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-model-summary");
+  }
+  return 1;
 }

@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -260,11 +261,23 @@ int benchMain(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   try {
     return benchMain(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_collision: %s\n", e.what());
     return 1;
   }
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "bench_collision", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "bench_collision");
+  }
+  return 1;
 }

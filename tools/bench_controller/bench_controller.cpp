@@ -32,6 +32,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -253,7 +254,7 @@ bool runScene(const std::string& path, const Options& opt, std::ofstream& csv, S
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   Options opt;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -337,4 +338,16 @@ int main(int argc, char** argv) {
         std::printf("note: %ld cycles: cycle %ld was not dumped\n", opt.cycles, k);
   }
   return ok ? 0 : 1;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "bench_controller", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "bench_controller");
+  }
+  return 1;
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <string>
 
 #include "case_study.hpp"
@@ -44,7 +45,7 @@ bool plot(const std::string& csv, const std::string& desired, const std::string&
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   std::string csv, png;
   double dt = 1e-3;
   for (int i = 1; i < argc; ++i) {
@@ -127,4 +128,16 @@ int main(int argc, char** argv) {
   const bool pass = ok && errAll < 1e-3 && errSeq < 1e-3 && newtonAll < 1e-12 && newtonParallel > 0.1;
   if (!pass) std::fprintf(stderr, "mrqp-case-study: a check failed (solver status or tolerance 1e-3)\n");
   return pass ? 0 : 1;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-case-study", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-case-study");
+  }
+  return 1;
 }

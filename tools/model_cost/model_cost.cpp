@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <random>
 #include <string>
@@ -133,7 +134,7 @@ int run(const char* model, const std::string& name, long n) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   if (argc != 4) return usage();
   char* end = nullptr;
   const long n = std::strtol(argv[3], &end, 10);
@@ -146,4 +147,16 @@ int main(int argc, char** argv) {
   if (model == "jvrc1") return run<jvrc1_model_model>("jvrc1", fn, n);
   std::fprintf(stderr, "mrqp-model-cost: unknown model '%s'\n", argv[1]);
   return usage();
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-model-cost", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-model-cost");
+  }
+  return 1;
 }

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <string>
 
@@ -43,7 +44,7 @@ bool parseNumber(const char* text, double& out) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   std::string scene_file, out_dir, mjcf_file;
   double width = 640, height = 480, duration = 0.0, fps = 30.0, kp = 2000.0, kd = 100.0;
   double azimuth = 150.0, elevation = -20.0;
@@ -164,4 +165,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-render", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-render");
+  }
+  return 1;
 }

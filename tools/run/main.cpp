@@ -358,6 +358,8 @@ int main(int argc, char** argv) {
     return runMain(argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mrqp-run: %s\n", e.what());
-    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "mrqp-run: unknown error\n");
   }
 }
+  return 1;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <exception>
 #include <string>
 
 #include "scene/builtin_models.hpp"
@@ -52,7 +53,7 @@ bool plot(const std::string& csv, const std::string& png, const std::string& tit
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   std::string scene_file, csv_file, png_file;
   double duration = -1.0;
   int every = 10;
@@ -132,6 +133,18 @@ int main(int argc, char** argv) {
       return 1;
     }
     if (csv && k % every == 0) {
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-scene", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-scene");
+  }
+  return 1;
+}
       csv << t << "," << static_cast<int>(st) << "," << p.solver().info().iterations << "," << us;
       for (const auto& [name, id] : scene.tasks) csv << "," << p.taskError(id).norm();
       for (const auto& [name, id] : scene.contacts) {

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -122,7 +123,7 @@ TimeNs to_ns(const timespec& t) { return static_cast<TimeNs>(t.tv_sec) * 1000000
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int unwrappedMain(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -559,4 +560,16 @@ int main(int argc, char** argv) {
   }
   std::printf("mrqp-stream: %s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
+}
+
+// Any exception becomes one error line and exit status 1 (docs/robustness.md).
+int main(int argc, char** argv) {
+  try {
+    return unwrappedMain(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", "mrqp-stream", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "%s: unknown error\n", "mrqp-stream");
+  }
+  return 1;
 }
