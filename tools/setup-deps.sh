@@ -33,6 +33,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev
   gnuplot-nox
   can-utils
+  clang libclang-rt-14-dev   # the fuzz build (tests/fuzz): libFuzzer, ASan and UBSan runtimes
   libmujoco-dev libegl-dev libegl-mesa0 libgl-dev libpng-dev ffmpeg
 )
 if [ "${MRQP_EXTRA_PACKAGES:-}" != "" ]; then

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: installs what it needs, builds the release configuration and runs every
 # test, then builds with AddressSanitizer + UndefinedBehaviorSanitizer and runs the unit tests
-# again, then checks that an installed mrqp serves a user's own CMake project, and last
+# again, then builds the libFuzzer harnesses with clang and runs each briefly, then checks that an
+# installed mrqp serves a user's own CMake project, and last
 # cross-compiles for aarch64 and runs those tests under qemu-aarch64 emulation.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,6 +28,12 @@ cmake --preset asan > /dev/null
 cmake --build --preset asan -j"$jobs"
 step "sanitizer tests (unit)"
 ctest --preset asan -j"$jobs"  # label unit, with the ASAN/UBSAN/LSAN options of the preset
+
+step "fuzz build (clang: libFuzzer + ASan + UBSan, the harnesses of tests/fuzz)"
+cmake --preset fuzz > /dev/null
+cmake --build --preset fuzz -j"$jobs"
+step "fuzz tests (each harness replays tests/data/fuzz and its seeds, then fuzzes for 5 s)"
+ctest --preset fuzz -j"$jobs"
 
 step "installed package: find_package(mrqp) from a user project"
 "$root/tests/install/check_install.sh" "$root/build/release"

@@ -444,10 +444,11 @@ void Emitter::emitBackwardTorques(std::ostream& o) const {
 
 // Composite-rigid-body algorithm: the table-driven crbaAtRoot (runtime/chain_walks.hpp) works in
 // one frame at the root's origin, so composites are plain sums and a joint column costs one
-// 6-vector dot product per ancestor; the free-flyer block is written out here.
+// 6-vector dot product per ancestor; it writes every entry of M once (structural zeros included)
+// except the free-flyer block, which is written out here.
 void Emitter::emitCrba(std::ostream& o) const {
   o << "void crba(Data& d, const ConfigVector& q, MassMatrix& M) noexcept {\n"
-       "  localTransforms(d, q);\n  M.setZero();\n  crbaAtRoot(d, M);\n";
+       "  localTransforms(d, q);\n  crbaAtRoot(d, M);\n";
   if (floatingRoot()) {
     o << "  {  // free-flyer block: [[I, [h]x], [-[h]x, m 1]]\n"
          "    const double* h = d.ch[0].data();\n"
