@@ -3,7 +3,7 @@
 // "Controller cycle").
 //
 //   bench_controller [--cycles N] [--scene NAME|FILE]... [--csv FILE] [--dump-qp DIR]
-//                    [--dump-cycles K,K,...] [--no-timing]
+//                    [--dump-cycles K,K,...] [--dump-every K] [--no-timing]
 //
 //   --cycles N     control cycles per scene (default 5000); the scene's own duration is ignored
 //   --scene S      a scene: a file, or a NAME of tools/scenes (NAME.yaml); repeatable. Default:
@@ -14,6 +14,8 @@
 //                  before the solve) in the QP text format (docs/qp.md) as DIR/<scene>_c<k>.qp
 //   --dump-cycles L  the cycles --dump-qp writes, a comma-separated list (default 0,1000); the
 //                  assembly records of tests/data/qp/assembly are --dump-cycles 0,1,500
+//   --dump-every K --dump-qp writes cycles 0, K, 2K, … (a sequence of a closed loop), and the
+//                  cycles of --dump-cycles only if that option is given too
 //   --no-timing    runs the cycles and nothing else (no clock is read): for instruction counts,
 //                  valgrind --tool=callgrind --toggle-collect='*MultiRobotProblem::update*'
 //                  --toggle-collect='*MultiRobotProblem::solve*' (callgrind_cycles.sh)
@@ -30,9 +32,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 #include <stdexcept>
-#include <exception>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,8 @@ struct Options {
   std::vector<std::string> scenes;
   std::string csv, dump_dir;
   std::vector<long> dump_cycles{0, 1000};
+  bool dump_cycles_given = false;
+  long dump_every = 0;
   bool timing = true;
 };
 
@@ -57,7 +61,7 @@ int usage(const char* msg) {
   if (msg) std::fprintf(stderr, "bench_controller: %s\n", msg);
   std::fprintf(stderr,
                "usage: bench_controller [--cycles N] [--scene NAME|FILE]... [--csv FILE] [--dump-qp DIR] "
-               "[--dump-cycles K,K,...] [--no-timing]\n"
+               "[--dump-cycles K,K,...] [--dump-every K] [--no-timing]\n"
                "  Runs each scene closed loop for N cycles (default 5000) and prints the time of\n"
                "  update() + solve() per cycle. Default scenes: panda_reach jvrc1_standing comanipulation\n"
                "  (%s).\n",
@@ -140,6 +144,7 @@ struct SceneResult {
   Stats cycle, update, solve, cpu;
   double mean_iterations = 0.0;
   int max_iterations = 0;
+  long structured = 0;  ///< solves answered by the solver's structured path
 };
 
 std::string range(int lo, int hi) {
@@ -147,6 +152,8 @@ std::string range(int lo, int hi) {
 }
 
 bool dumpCycle(const Options& opt, long k) {
+  if (opt.dump_every > 0 && k % opt.dump_every == 0) return true;
+  if (opt.dump_every > 0 && !opt.dump_cycles_given) return false;
   return std::find(opt.dump_cycles.begin(), opt.dump_cycles.end(), k) != opt.dump_cycles.end();
 }
 
@@ -232,6 +239,7 @@ bool runScene(const std::string& path, const Options& opt, std::ofstream& csv, S
     r.mi_min = std::min(r.mi_min, qp.mi());
     r.mi_max = std::max(r.mi_max, qp.mi());
     iterations += p.solver().info().iterations;
+    r.structured += p.solver().info().structured ? 1 : 0;
     r.max_iterations = std::max(r.max_iterations, p.solver().info().iterations);
     r.cycles_done = k + 1;
     if (st != QpStatus::Optimal) {
@@ -278,6 +286,13 @@ static int unwrappedMain(int argc, char** argv) {
     } else if (a == "--dump-cycles") {
       const char* v = next();
       if (!v || !parseCycles(v, opt.dump_cycles)) return usage("--dump-cycles needs a list like 0,1,500");
+      opt.dump_cycles_given = true;
+    } else if (a == "--dump-every") {
+      const char* v = next();
+      char* stop = nullptr;
+      const long k = v ? std::strtol(v, &stop, 10) : 0;
+      if (!v || *stop != '\0' || k < 1) return usage("--dump-every needs a positive integer");
+      opt.dump_every = k;
     } else if (a == "--no-timing") {
       opt.timing = false;
     } else if (a == "-h" || a == "--help") {
@@ -314,27 +329,29 @@ static int unwrappedMain(int argc, char** argv) {
     if (!runScene(path, opt, csv, r)) return 1;
     ok = ok && !r.failed;
     if (!opt.timing)
-      std::printf("%s: %ld cycles, n %s, me %s, mi %s, mean solver steps %.2f%s\n", r.name.c_str(),
-                  r.cycles_done, range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
-                  range(r.mi_min, r.mi_max).c_str(), r.mean_iterations, r.failed ? " (FAILED)" : "");
+      std::printf("%s: %ld cycles, n %s, me %s, mi %s, mean solver steps %.2f, structured path %ld%s\n",
+                  r.name.c_str(), r.cycles_done, range(r.n_min, r.n_max).c_str(),
+                  range(r.me_min, r.me_max).c_str(), range(r.mi_min, r.mi_max).c_str(), r.mean_iterations,
+                  r.structured, r.failed ? " (FAILED)" : "");
     results.push_back(r);
   }
   if (opt.timing) {
     std::printf(
         "| scene | n | equalities | inequalities | cycles | median µs | p90 µs | p99 µs | max µs | "
-        "update median µs | solve median µs | CPU median µs | CPU p99 µs | mean steps | max steps |\n");
-    std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        "update median µs | solve median µs | CPU median µs | CPU p99 µs | mean steps | max steps | "
+        "structured |\n");
+    std::printf("|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
     for (const auto& r : results)
       std::printf(
           "| %s | %s | %s | %s | %ld%s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.2f | %d "
-          "|\n",
+          "| %ld |\n",
           r.name.c_str(), range(r.n_min, r.n_max).c_str(), range(r.me_min, r.me_max).c_str(),
           range(r.mi_min, r.mi_max).c_str(), r.cycles_done, r.failed ? " (failed)" : "", r.cycle.median,
           r.cycle.p90, r.cycle.p99, r.cycle.max, r.update.median, r.solve.median, r.cpu.median, r.cpu.p99,
-          r.mean_iterations, r.max_iterations);
+          r.mean_iterations, r.max_iterations, r.structured);
     std::printf("\nload average (1 min) at end: %s\n", loadAverage().c_str());
     for (const long k : opt.dump_cycles)
-      if (!opt.dump_dir.empty() && opt.cycles <= k)
+      if (!opt.dump_dir.empty() && (opt.dump_every == 0 || opt.dump_cycles_given) && opt.cycles <= k)
         std::printf("note: %ld cycles: cycle %ld was not dumped\n", opt.cycles, k);
   }
   return ok ? 0 : 1;
