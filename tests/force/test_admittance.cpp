@@ -38,7 +38,7 @@ double settle(Admittance& a, double target, double measured, int samples = 1000)
 
 }  // namespace
 
-TEST_CASE("force: admittance in steady state is eq. 45, with the paper's defaults", "[force][admittance]") {
+TEST_CASE("force: admittance in steady state is eq. 45 with the paper's defaults", "[force][admittance]") {
   const AdmittanceGains g;
   CHECK(g.gain == 5e-4);
   CHECK(g.v_min == -0.05);

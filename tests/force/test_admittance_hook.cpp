@@ -98,7 +98,7 @@ TEST_CASE("force: direct mode presses the wall with the user force", "[force][lo
   CHECK(std::fabs(st.velocity) < 5e-4 * 0.6);
 }
 
-TEST_CASE("force: sensor frames, the tool's weight and the normal's sign", "[force][loop]") {
+TEST_CASE("force: sensor frames and the tool's weight and the normal's sign", "[force][loop]") {
   SECTION("the normal in the task frame's axes acts as the same normal in world axes") {
     ForceSetup probe(pressText(), "p.yaml");
     const StartPose p0 = startPose(probe);
