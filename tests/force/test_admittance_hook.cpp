@@ -9,7 +9,8 @@
 //     force task (switched on with fᵈ along n, off otherwise);
 //   - a stale F/T sensor makes the admittance hold: the reference stops, nothing winds up;
 //   - mode and fᵈ changes from the timeline move the commanded velocity continuously;
-//   - disabled (mrqp-run --no-force-control): the task keeps its scene references.
+//   - disabled (mrqp-run --no-force-control): the task keeps its scene references;
+//   - a frame_pose task gets the references in its linear rows, its orientation left alone.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -347,4 +348,28 @@ TEST_CASE("force: disabled force control leaves the task's references alone", "[
   CHECK(task.target() == nominal);
   CHECK(s.sc.problem->task(s.sc.task("press")).velocityReference().norm() == 0.0);
   CHECK(s.sc.problem->task(s.sc.task("press")).accelerationReference().norm() == 0.0);
+}
+
+TEST_CASE("force: a frame_pose task gets the references in its linear rows", "[force][loop]") {
+  ForceSetup s(forcetest::replaced(pressText(), "type: frame_position", "type: frame_pose"), "p.yaml");
+  const int id = s.sc.task("press");
+  const auto& task = dynamic_cast<const mrqp::problem::FrameTask&>(s.sc.problem->task(id));
+  REQUIRE(std::string(task.kind()) == "frame_pose");
+  const Eigen::Vector3d nominal = task.target();
+  const Eigen::Matrix3d rotation = task.targetRotation();
+  REQUIRE(s.boot());
+  const auto& st = s.hook->state(0);
+  for (int k = 0; k < 1000; ++k) s.cycle();  // no wall: searching down at K_I fᵈ
+  REQUIRE_FALSE(s.ctrl->safeStopped());
+  const Eigen::VectorXd& v = s.sc.problem->task(id).velocityReference();
+  const Eigen::VectorXd& a = s.sc.problem->task(id).accelerationReference();
+  REQUIRE(v.size() == 6);
+  CHECK(v.head<3>().norm() == 0.0);  // angular rows: no reference
+  CHECK(a.head<3>().norm() == 0.0);
+  CHECK(v.tail<3>() == st.velocity_ref);
+  CHECK(a.tail<3>() == st.acceleration_ref);
+  CHECK(st.velocity_ref.z() == Approx(-5e-4 * 10.0).epsilon(1e-3));
+  CHECK((task.target() - nominal - st.displacement).norm() < 1e-12);
+  CHECK(st.displacement.z() < -0.004);
+  CHECK(task.targetRotation() == rotation);  // the orientation target is left alone
 }
