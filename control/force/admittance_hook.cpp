@@ -96,7 +96,7 @@ void AdmittanceHook::robotCycle(loop::Controller& c, Slot& s) noexcept {
   const loop::SensorIo& io = robot.ft_sensors[static_cast<std::size_t>(s.sensor)];
   const std::array<double, 6>& w = robot.wrench[static_cast<std::size_t>(s.sensor)];
   const Eigen::Vector3d sample(w[0], w[1], w[2]);
-  const Eigen::Matrix3d& R_sensor = e.framePose(s.spec.sensor_frame).R;
+  const Eigen::Matrix3d R_sensor = e.framePose(s.spec.sensor_frame).R;
   const Eigen::Vector3d applied = s.spec.tool_mass * p.settings().gravity - R_sensor * sample;
   const double measured = applied.dot(n);
 
