@@ -18,10 +18,11 @@
 #include <thread>
 #include <vector>
 
-#include "alloc_counter.hpp"
 #ifdef MRQP_RUN_HAVE_COLLISION
 #include "collision/collision_watch.hpp"
 #endif
+#include "force/admittance_hook.hpp"
+#include "force/force_control_yaml.hpp"
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
 #include "loop/emulated_rig.hpp"
@@ -40,6 +41,10 @@
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/yaml_reader.hpp"
+
+#ifdef MRQP_RUN_COUNTS_ALLOCATIONS
+#include "counting_allocator.hpp"
+#endif
 
 using namespace mrqp;
 
@@ -91,6 +96,23 @@ class LogWriter {
 };
 
 std::string flagNames(std::uint32_t flags) { return drivers::fault_flags_str(flags); }
+
+/// The loop thread's allocations are counted while armed (tests/support's counting allocator);
+/// a build without it (sanitizers) counts nothing and reports −1.
+void armAllocationCounter(bool on) noexcept {
+#ifdef MRQP_RUN_COUNTS_ALLOCATIONS
+  testing::armThreadCounter(on);
+#else
+  (void)on;
+#endif
+}
+long countedAllocations() noexcept {
+#ifdef MRQP_RUN_COUNTS_ALLOCATIONS
+  return testing::armedAllocationCount();
+#else
+  return -1;
+#endif
+}
 
 int runMain(int argc, char** argv) {
   bool help = false;
@@ -177,6 +199,10 @@ int runMain(int argc, char** argv) {
   loop::FaultInjector faults(o.faults, rig.get(), ctrl, rh);
   loop::Timeline timeline = loop::Timeline::read(text, o.scene, sc);
   if (!timeline.events().empty()) ctrl.addHook(timeline);
+  // The force control of the scene's force_control section (docs/force-control.md).
+  const force::ForceControlSpec force_spec = force::readForceControl(text, o.scene, sc, rh, dt);
+  force::AdmittanceHook admittance(ctrl, force_spec, !o.force_control);
+  if (admittance.size() > 0) ctrl.addHook(admittance);
 
   long cycles = o.cycles;
   if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
@@ -217,7 +243,7 @@ int runMain(int argc, char** argv) {
   // Pacing (wall clock, absolute deadlines) and the time base: with simulated buses the drivers,
   // the buses and the plant run on the simulated clock even when the cycles are paced.
   loop::DeadlineClock clock(period);
-  const bool paced = o.realtime || !sim;
+  const bool paced = o.realtime || o.paced || !sim;
   const drivers::TimeNs wall0 = paced ? clock.start() : 0;
   drivers::TimeNs now = sim ? 0 : wall0;
   auto next = [&]() {
@@ -252,9 +278,9 @@ int runMain(int argc, char** argv) {
   const long progress_every = std::max(1L, std::lround(0.5 / dt));
   for (long k = 0; k < cycles; ++k) {
     faults.beforeCycle(static_cast<double>(k) * dt, now);
-    run::armAllocationCounter(true);
+    armAllocationCounter(true);
     ctrl.cycle(now);
-    run::armAllocationCounter(false);
+    armAllocationCounter(false);
     faults.afterCycle();
 #ifdef MRQP_RUN_HAVE_COLLISION
     watch.measure(plantState);
@@ -284,7 +310,7 @@ int runMain(int argc, char** argv) {
   s.cycles = cycles;
   s.period_s = dt;
   s.deadline_misses = misses;
-  s.allocations_in_loop = run::countedAllocations();
+  s.allocations_in_loop = countedAllocations();
   s.log_records_dropped = static_cast<long>(ring.dropped());
   std::vector<double> sorted = cycle_us;
   std::sort(sorted.begin(), sorted.end());
@@ -361,5 +387,5 @@ int main(int argc, char** argv) {
   } catch (...) {
     std::fprintf(stderr, "mrqp-run: unknown error\n");
   }
-}
   return 1;
+}

@@ -8,12 +8,15 @@ namespace mrqp::run {
 
 const char* runUsage() noexcept {
   return "usage: mrqp-run SCENE.yaml --out DIR [--plant mujoco|ideal] [--bus sim|IFNAME[,IFNAME...]]\n"
-         "                [--cycles N | --duration S] [--realtime] [--fault KIND@SECONDS[:DEVICE]]...\n"
-         "                [--set KEY=VALUE]... [--no-plots] [--quiet]\n"
+         "                [--cycles N | --duration S] [--realtime | --paced]\n"
+         "                [--fault KIND@SECONDS[:DEVICE]]... [--set KEY=VALUE]... [--no-force-control]\n"
+         "                [--no-plots] [--quiet]\n"
          "  Runs the scene as a controller: the loop reads the drives over CAN, solves the QP and\n"
          "  streams setpoints; the plant and its emulated firmware sit behind the bus.\n"
          "  KIND: heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, infeasible.\n"
-         "  DEVICE: a drive ENTITY.JOINT or a bus name of the scene's hardware section.\n";
+         "  DEVICE: a drive ENTITY.JOINT or a bus name of the scene's hardware section.\n"
+         "  --paced: cycles at the scene's period on the wall clock (as --realtime, without its set-up).\n"
+         "  --no-force-control: every admittance of the scene's force_control section in mode off.\n";
 }
 
 namespace {
@@ -66,10 +69,14 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
       if (!(o.duration > 0.0)) throw std::invalid_argument("--duration: expected seconds > 0");
     } else if (a == "--realtime") {
       o.realtime = true;
+    } else if (a == "--paced") {
+      o.paced = true;
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (a == "--no-plots") {
       o.plots = false;
+    } else if (a == "--no-force-control") {
+      o.force_control = false;
     } else if (a == "--fault") {
       o.faults.push_back(loop::parseFaultRequest(value()));
     } else if (a == "--set") {

@@ -16,8 +16,10 @@ struct RunOptions {
   long cycles = -1;
   double duration = -1.0;
   bool realtime = false;
+  bool paced = false;  ///< cycles paced at the period without the real-time set-up
   bool quiet = false;
   bool plots = true;
+  bool force_control = true;  ///< false: --no-force-control, every admittance in mode off
   std::vector<loop::FaultRequest> faults;
   std::vector<std::string> sets;
 };
