@@ -32,7 +32,7 @@ packages=(
   libeigen3-dev liburdfdom-dev libccd-dev catch2 libbenchmark-dev
   libyaml-cpp-dev libcli11-dev
   gnuplot-nox
-  can-utils
+  can-utils stress-ng
   clang libclang-rt-14-dev   # the fuzz build (tests/fuzz): libFuzzer, ASan and UBSan runtimes
   libmujoco-dev libegl-dev libegl-mesa0 libgl-dev libpng-dev ffmpeg
 )
