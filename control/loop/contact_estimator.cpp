@@ -33,7 +33,8 @@ Eigen::Vector3d logRotation(const Eigen::Matrix3d& R) noexcept {
 }  // namespace
 
 ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured,
-                                   const std::vector<int>& imu_frame, int iterations)
+                                   const std::vector<int>& imu_frame, int iterations,
+                                   bool estimate_unmeasured)
     : p_(problem), measured_(measured), imu_frame_(imu_frame), iterations_(iterations) {
   measured_.resize(static_cast<std::size_t>(p_.entityCount()), false);
   imu_frame_.resize(static_cast<std::size_t>(p_.entityCount()), -1);
@@ -48,32 +49,38 @@ ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const st
   Jo_.setZero(6, max_nv);
   v_save_.setZero(max_nv);
   zero_.setZero(max_nv);
+  filters_.assign(static_cast<std::size_t>(p_.entityCount()), BaseAttitudeFilter{});
+  imu_time_.assign(static_cast<std::size_t>(p_.entityCount()), -1);
   // Floating bases of measured robots first, then everything without hardware.
   for (int pass = 0; pass < 2; ++pass) {
     for (int e = 0; e < p_.entityCount(); ++e) {
       const problem::Entity& en = p_.entity(e);
-      Target t;
-      t.entity = e;
       if (pass == 0 && measured_[static_cast<std::size_t>(e)] && en.floatingBase()) {
-        const bool imu = imu_frame_[static_cast<std::size_t>(e)] >= 0;
-        t.first = imu ? 3 : 0;  // with an IMU: the position only (v = (ω; v) body)
-        t.count = imu ? 3 : 6;
-      } else if (pass == 1 && !measured_[static_cast<std::size_t>(e)] && en.nv() > 0) {
-        t.first = 0;
-        t.count = en.nv();
-      } else {
-        continue;
+        targets_.push_back(makeTarget(e, 0, 6));
+        if (imu_frame_[static_cast<std::size_t>(e)] >= 0) {  // with an IMU also the position alone
+          targets_.back().position_only = static_cast<int>(position_targets_.size());
+          position_targets_.push_back(makeTarget(e, 3, 3));  // v = (ω; v) body
+        }
+      } else if (pass == 1 && estimate_unmeasured && !measured_[static_cast<std::size_t>(e)] && en.nv() > 0) {
+        targets_.push_back(makeTarget(e, 0, en.nv()));
       }
-      t.A.setZero(6 * kMaxLinks, t.count);
-      t.b.setZero(6 * kMaxLinks);
-      t.N.setZero(t.count, t.count);
-      t.x.setZero(t.count);
-      // Sizes the factorisation's storage before the cycle, and gives it a defined status (Eigen's
-      // sized constructor leaves it uninitialised, and moving the object reads it).
-      t.ldlt.compute(Eigen::MatrixXd::Identity(t.count, t.count));
-      targets_.push_back(std::move(t));
     }
   }
+}
+
+ContactEstimator::Target ContactEstimator::makeTarget(int entity, int first, int count) {
+  Target t;
+  t.entity = entity;
+  t.first = first;
+  t.count = count;
+  t.A.setZero(6 * kMaxLinks, t.count);
+  t.b.setZero(6 * kMaxLinks);
+  t.N.setZero(t.count, t.count);
+  t.x.setZero(t.count);
+  // Sizes the factorisation's storage before the cycle, and gives it a defined status (Eigen's
+  // sized constructor leaves it uninitialised, and moving the object reads it).
+  t.ldlt.compute(Eigen::MatrixXd::Identity(t.count, t.count));
+  return t;
 }
 
 bool ContactEstimator::estimated(int entity) const noexcept {
@@ -192,24 +199,38 @@ void ContactEstimator::setImu(int entity, const drivers::ImuFeedback& sample) no
   imu_fresh_[static_cast<std::size_t>(entity)] = 1;
 }
 
-void ContactEstimator::applyImu(int entity) noexcept {
-  // R_world_base = R_world_imu · (R_base_imu)ᵀ with R_base_imu from the current joints.
-  problem::Entity& e = p_.entity(entity);
-  const drivers::ImuFeedback& m = imu_[static_cast<std::size_t>(entity)];
+void ContactEstimator::fuseImu(Target& t, const std::array<int, kMaxLinks>& links, int n) noexcept {
+  const auto entity = static_cast<std::size_t>(t.entity);
+  problem::Entity& e = p_.entity(t.entity);
+  const drivers::ImuFeedback& m = imu_[entity];
+  // The reference orientation: the contacts' fit of all six base coordinates, else the IMU's
+  // attitude output through the IMU frame's pose in the base (from the joints).
+  if (n > 0) fitPose(t, links, n);
   e.update();
   auto q = e.q();
-  const Eigen::Quaterniond qb(q(3), q(4), q(5), q(6));
+  const Eigen::Quaterniond q_base(q(3), q(4), q(5), q(6));
   const Eigen::Matrix3d R_base_imu =
-      qb.toRotationMatrix().transpose() * e.framePose(imu_frame_[static_cast<std::size_t>(entity)]).R;
-  const Eigen::Quaterniond qi(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
-  Eigen::Quaterniond qn(qi.normalized().toRotationMatrix() * R_base_imu.transpose());
-  qn.normalize();
-  q(3) = qn.w();
-  q(4) = qn.x();
-  q(5) = qn.y();
-  q(6) = qn.z();
-  const Eigen::Vector3d w(m.angular_velocity[0], m.angular_velocity[1], m.angular_velocity[2]);
-  e.v().head<3>() = R_base_imu * w;
+      q_base.toRotationMatrix().transpose() * e.framePose(imu_frame_[entity]).R;
+  Eigen::Quaterniond reference = q_base;
+  if (n == 0) {
+    const Eigen::Quaterniond qi(m.orientation[0], m.orientation[1], m.orientation[2], m.orientation[3]);
+    reference = Eigen::Quaterniond(qi.normalized().toRotationMatrix() * R_base_imu.transpose());
+  }
+  const Eigen::Vector3d gyro =
+      R_base_imu * Eigen::Vector3d(m.angular_velocity[0], m.angular_velocity[1], m.angular_velocity[2]);
+  const double period =
+      imu_time_[entity] < 0
+          ? 0.0
+          : std::clamp(static_cast<double>(m.timestamp - imu_time_[entity]) * 1e-9, 0.0, 0.1);
+  imu_time_[entity] = m.timestamp;
+  BaseAttitudeFilter& f = filters_[entity];
+  f.update(gyro, period, reference, n > 0);
+  const Eigen::Quaterniond& qf = f.orientation();
+  q(3) = qf.w();
+  q(4) = qf.x();
+  q(5) = qf.y();
+  q(6) = qf.z();
+  e.v().head<3>() = f.rate();
 }
 
 void ContactEstimator::estimate() noexcept {
@@ -251,14 +272,20 @@ void ContactEstimator::estimate() noexcept {
         known_[static_cast<std::size_t>(e)] = 2;  // updated
       }
     }
-    if (imu_frame_[static_cast<std::size_t>(t.entity)] >= 0 &&
-        imu_fresh_[static_cast<std::size_t>(t.entity)]) {
-      applyImu(t.entity);
-      imu_fresh_[static_cast<std::size_t>(t.entity)] = 0;
-    }
     const int n = gather(t, links, known_);
+    Target* fit = &t;
+    if (t.position_only >= 0) {
+      // With an IMU: its sample fused with the contacts fixes the orientation; the position is fitted.
+      if (imu_fresh_[static_cast<std::size_t>(t.entity)]) {
+        fuseImu(t, links, n);
+        imu_fresh_[static_cast<std::size_t>(t.entity)] = 0;
+      }
+      fit = &position_targets_[static_cast<std::size_t>(t.position_only)];
+    }
     if (n > 0) {
-      fitPose(t, links, n);
+      fitPose(*fit, links, n);
+      // The twist from the contacts (all six coordinates: the angular velocity consistent with
+      // feet that do not move), the gyro's rate only when no contact holds (set by fuseImu).
       fitVelocity(t, links, n);
     }
     known_[static_cast<std::size_t>(t.entity)] = n > 0 ? 2 : 1;  // fitted: its frame poses are current

@@ -7,9 +7,13 @@
 // world-aligned frame Jacobians), and its velocities the least-squares fit of zero relative
 // twist. Entities are estimated in order: floating bases of measured robots first, then the others,
 // each from contacts whose other side is the ground or an entity already measured or estimated.
-// A floating base with an IMU takes its orientation and angular velocity from the IMU (through the
-// IMU frame's pose in the base, from the measured joints) and only its position and linear
-// velocity from the contacts. Set-up allocates; estimate() is allocation-free.
+// A floating base with an IMU fuses the two (BaseAttitudeFilter, a complementary filter on SO(3)):
+// at each IMU sample the base's orientation is the gyro's integration pulled towards the
+// orientation the ground contacts give (the IMU's own attitude output when no ground contact
+// holds), the gyro's bias is learnt, the angular velocity is the gyro's with that bias removed
+// (all through the IMU frame's pose in the base, from the measured joints); the position and the
+// linear velocity are then fitted to the contacts with that orientation. Set-up allocates;
+// estimate() is allocation-free.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -19,6 +23,7 @@
 
 #include <mrqp/drivers/device.hpp>
 
+#include "loop/base_attitude_filter.hpp"
 #include "problem/multi_robot_problem.hpp"
 
 namespace mrqp::loop {
@@ -29,8 +34,9 @@ class ContactEstimator {
 
   /// `measured[e]`: entity e's joints come from its drives (a robot with hardware).
   /// `imu_frame[e]`: the frame of entity e that carries an IMU, −1 for none.
+  /// `estimate_unmeasured` false: only the floating bases of measured robots are estimated.
   ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured,
-                   const std::vector<int>& imu_frame, int iterations = 2);
+                   const std::vector<int>& imu_frame, int iterations = 2, bool estimate_unmeasured = true);
 
   /// The IMU sample of entity e for this cycle's estimate (orientation in the world, body rates).
   void setImu(int entity, const drivers::ImuFeedback& sample) noexcept;
@@ -42,6 +48,10 @@ class ContactEstimator {
   bool estimated(int entity) const noexcept;
   /// Largest pose residual (m or rad) of the last estimate of an entity, −1 if not estimated.
   double residual(int entity) const noexcept { return residual_[static_cast<std::size_t>(entity)]; }
+  /// The gyro bias learnt for the IMU of entity e (base axes, rad/s; zero without an IMU).
+  Eigen::Vector3d gyroBias(int entity) const noexcept {
+    return filters_[static_cast<std::size_t>(entity)].bias();
+  }
 
  private:
   struct Frozen {
@@ -57,6 +67,7 @@ class ContactEstimator {
     Eigen::MatrixXd N;  ///< AᵀA (count × count)
     Eigen::VectorXd x;
     Eigen::LDLT<Eigen::MatrixXd> ldlt;
+    int position_only = -1;  ///< with an IMU: the target of the position alone (in position_targets_)
   };
 
   problem::Pose targetPose(int contact, bool surface_side) const noexcept;
@@ -65,7 +76,9 @@ class ContactEstimator {
   void fitPose(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void applyIncrement(Target& t) noexcept;
-  void applyImu(int entity) noexcept;
+  /// The IMU sample of an entity fused with its contacts (all six coordinates fitted first).
+  void fuseImu(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
+  static Target makeTarget(int entity, int first, int count);
 
   problem::MultiRobotProblem& p_;
   std::vector<bool> measured_;
@@ -73,8 +86,11 @@ class ContactEstimator {
   std::vector<drivers::ImuFeedback> imu_;
   std::vector<std::uint8_t> imu_fresh_;
   int iterations_;
-  std::vector<Frozen> frozen_;   // per contact slot
-  std::vector<Target> targets_;  // in estimation order
+  std::vector<Frozen> frozen_;            // per contact slot
+  std::vector<Target> targets_;           // in estimation order
+  std::vector<Target> position_targets_;  // the position of a floating base with an IMU
+  std::vector<BaseAttitudeFilter> filters_;
+  std::vector<drivers::TimeNs> imu_time_;  // timestamp of the last fused sample, −1 before
   std::vector<std::uint8_t> known_;
   std::vector<double> residual_;
   Eigen::MatrixXd J_, Jo_;  // 6 × max nv

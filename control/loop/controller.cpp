@@ -2,12 +2,12 @@
 #include "loop/controller.hpp"
 
 #include <mrqp/drivers/arm_driver.hpp>
-#include <mrqp/drivers/ft_sensor_driver.hpp>
-#include <mrqp/drivers/imu_driver.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "loop/solution_integrator.hpp"
 
 namespace mrqp::loop {
 
@@ -55,118 +55,10 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
   }
   bus_frames_prev_.assign(buses.size(), 0);
   robots_.reserve(hw.robots.size());
-  for (const ResolvedRobot& rr : hw.robots) {
-    RobotIo r;
-    r.entity = rr.entity;
-    r.name = rr.name;
-    r.divisor = rr.divisor;
-    r.safe_stop = rr.safe_stop;
-    r.hold_damping = rr.hold_damping;
-    const problem::Entity& e = problem_.entity(rr.entity);
-    // The robot's buses, in the order of the hardware section.
-    std::vector<int> bus_of_router;
-    for (std::size_t b = 0; b < hw.buses.size(); ++b) {
-      if (hw.buses[b].robot == static_cast<int>(&rr - hw.robots.data())) {
-        bus_of_router.push_back(static_cast<int>(b));
-        r.routers.push_back(routers_[b].get());
-      }
-    }
-    if (!rr.drives.empty()) {
-      drivers::ArmConfig ac;
-      ac.cycle_period = static_cast<drivers::TimeNs>(std::llround(dt_ * rr.divisor * 1e9));
-      ac.heartbeat_timeout = static_cast<drivers::TimeNs>(std::llround(hw.heartbeat_timeout_s * 1e9));
-      ac.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
-      for (const ResolvedDrive& d : rr.drives) {
-        drivers::ArmDriveConfig dc;
-        dc.bus = static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), d.bus) -
-                                          bus_of_router.begin());
-        dc.node = static_cast<std::uint8_t>(d.node);
-        dc.scale.rated_torque_mNm = static_cast<std::uint32_t>(std::lround(d.rated_torque * 1000.0));
-        dc.mode = d.mode == DriveMode::Csp ? MRQP_FW_MODE_CSP : MRQP_FW_MODE_CST;
-        const double lim = e.effortLimit()(d.joint);
-        if (lim > 0.0) dc.torque_limit = lim;
-        ac.drives.push_back(dc);
-      }
-      std::string err;
-      std::unique_ptr<drivers::ArmDriver> arm = drivers::ArmDriver::create(r.routers, ac, &err);
-      if (!arm) throw std::runtime_error("controller: " + rr.name + ": " + err);
-      drivers::JointDevice* dev = arm.get();
-      r.devices.push_back(std::move(arm));
-      for (std::size_t i = 0; i < rr.drives.size(); ++i) {
-        const ResolvedDrive& d = rr.drives[i];
-        JointIo j;
-        j.device = dev;
-        j.index = i;
-        j.v_index = d.joint;
-        j.q_index = d.q_index;
-        j.torque = d.mode == DriveMode::Cst;
-        j.name = rr.name + "." + d.joint_name;
-        r.joints.push_back(j);
-      }
-    }
-    if (!rr.impedance.empty()) {
-      throw std::runtime_error("controller: " + rr.name +
-                               ": MIT motors and FD boards are not run by this build of the loop");
-    }
-    // A bus without drives needs a SYNC of its own from the sensor drivers.
-    auto hasDrives = [&](int bus) {
-      return std::any_of(rr.drives.begin(), rr.drives.end(),
-                         [bus](const ResolvedDrive& d) { return d.bus == bus; });
-    };
-    auto routerIndex = [&](int bus) {
-      return static_cast<std::size_t>(std::find(bus_of_router.begin(), bus_of_router.end(), bus) -
-                                      bus_of_router.begin());
-    };
-    if (!rr.ft_sensors.empty()) {
-      drivers::FtConfig fc;
-      fc.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
-      for (const ResolvedSensor& s : rr.ft_sensors) {
-        drivers::FtSensorConfig sc;
-        sc.bus = routerIndex(s.bus);
-        sc.node = static_cast<std::uint8_t>(s.node);
-        fc.sensors.push_back(sc);
-        fc.produce_sync = fc.produce_sync || !hasDrives(s.bus);
-      }
-      std::string err;
-      std::unique_ptr<drivers::FtSensorDriver> ft = drivers::FtSensorDriver::create(r.routers, fc, &err);
-      if (!ft) throw std::runtime_error("controller: " + rr.name + ": F/T sensors: " + err);
-      for (std::size_t i = 0; i < rr.ft_sensors.size(); ++i) {
-        r.ft_sensors.push_back(
-            SensorIo{ft.get(), i, rr.ft_sensors[i].frame, rr.name + "." + rr.ft_sensors[i].frame_name, 0});
-      }
-      r.devices.push_back(std::move(ft));
-    }
-    if (!rr.imus.empty()) {
-      drivers::ImuConfig ic;
-      ic.feedback_missing_cycles = static_cast<std::uint32_t>(hw.feedback_missing_cycles);
-      for (const ResolvedSensor& s : rr.imus) {
-        drivers::ImuSensorConfig sc;
-        sc.bus = routerIndex(s.bus);
-        sc.node = static_cast<std::uint8_t>(s.node);
-        ic.imus.push_back(sc);
-        ic.produce_sync = ic.produce_sync || !hasDrives(s.bus);
-      }
-      std::string err;
-      std::unique_ptr<drivers::ImuDriver> imu = drivers::ImuDriver::create(r.routers, ic, &err);
-      if (!imu) throw std::runtime_error("controller: " + rr.name + ": IMUs: " + err);
-      for (std::size_t i = 0; i < rr.imus.size(); ++i) {
-        r.imus.push_back(SensorIo{imu.get(), i, rr.imus[i].frame, rr.name + "." + rr.imus[i].frame_name, 0});
-      }
-      r.devices.push_back(std::move(imu));
-    }
-    r.wrench.assign(r.ft_sensors.size(), std::array<double, 6>{});
-    r.imu.assign(r.imus.size(), drivers::ImuFeedback{});
-    const std::size_t n = r.joints.size();
-    r.q_cmd.assign(n, 0.0);
-    r.v_cmd.assign(n, 0.0);
-    r.tau_cmd.assign(n, 0.0);
-    r.q_meas.assign(n, 0.0);
-    r.v_meas.assign(n, 0.0);
-    r.stale.assign(n, 0);
-    r.q_sent.assign(n, 0.0);
-    r.v_sent.assign(n, 0.0);
-    r.miss_rate.assign(n, 0.0);
-    robots_.push_back(std::move(r));
+  std::vector<drivers::BusRouter*> routers;
+  for (auto& r : routers_) routers.push_back(r.get());
+  for (std::size_t r = 0; r < hw.robots.size(); ++r) {
+    robots_.push_back(makeRobotIo(hw, r, problem_.entity(hw.robots[r].entity), routers, dt_));
   }
   if (options_.contact_estimation) {
     std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
@@ -364,7 +256,7 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
 }
 
 void Controller::write(drivers::TimeNs now) noexcept {
-  problem_.integrate(dt_);
+  integrateSolution(problem_, dt_);
   for (RobotIo& r : robots_) {
     const problem::Entity& e = problem_.entity(r.entity);
     const auto tau = problem_.torque(r.entity);
@@ -380,7 +272,8 @@ void Controller::write(drivers::TimeNs now) noexcept {
       drivers::JointCommand c;
       c.position = r.q_cmd[i];
       c.velocity = r.v_cmd[i];
-      c.torque = j.torque ? r.tau_cmd[i] : 0.0;
+      // CSP: the position alone; CST: the torque; impedance: the QP's τ as feed-forward.
+      c.torque = j.kind == JointKind::Position ? 0.0 : r.tau_cmd[i];
       (void)j.device->set_joint(j.index, c);
       remember(r, i);
     }
@@ -390,8 +283,9 @@ void Controller::write(drivers::TimeNs now) noexcept {
 
 void Controller::remember(RobotIo& r, std::size_t i) noexcept {
   // What the drive will report for this setpoint: its position, and (CSP) the velocity it derives
-  // from two successive targets; a torque drive's joint is not servoed: report what was predicted.
-  if (r.joints[i].torque) {
+  // from two successive targets; an impedance joint the velocity commanded; a torque drive's joint
+  // is not servoed: report what was predicted.
+  if (r.joints[i].kind != JointKind::Position) {
     r.q_sent[i] = r.q_cmd[i];
     r.v_sent[i] = r.v_cmd[i];
   } else {

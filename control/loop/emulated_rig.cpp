@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "loop/actuator_scaling.hpp"
+
 namespace mrqp::loop {
 
 EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotProblem& problem, Plant& plant)
@@ -46,6 +48,70 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       drives_.push_back(
           DriveSlot{r.name + "." + d.joint_name, std::make_unique<PlantCia402Drive>(*node, plant, o)});
     }
+    // MIT motors: one node per bus for all of the robot's motors there; hand boards: one node each.
+    auto jointOf = [&](const ResolvedDrive& d) {
+      const int h = plant.jointHandle(r.name, d.joint_name);
+      if (h < 0) {
+        throw std::runtime_error("emulated rig: the " + std::string(plant.kind()) + " plant has no joint '" +
+                                 d.joint_name + "' of '" + r.name + "'");
+      }
+      return h;
+    };
+    auto addNode = [&](int bus, const char* name) {
+      drivers::SimNodeConfig nc;
+      nc.name = name;
+      nc.fd = hw.buses[static_cast<std::size_t>(bus)].decl.data_bitrate != 0;
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(bus)]->add_node(nc);
+      if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
+      return node;
+    };
+    for (const ResolvedDrive& d : r.impedance) {
+      if (d.kind == ActuatorKind::Mit) {
+        PlantActuators<emulation::EmulatedMitMotor>* on = nullptr;
+        for (std::size_t i = 0; i < mit_.size(); ++i) {
+          if (mit_bus_[i] == d.bus) on = mit_[i].get();
+        }
+        if (on == nullptr) {
+          mit_.push_back(
+              std::make_unique<PlantActuators<emulation::EmulatedMitMotor>>(*addNode(d.bus, "mit"), plant));
+          mit_bus_.push_back(d.bus);
+          on = mit_.back().get();
+        }
+        emulation::EmulatedMitMotor::Options o;
+        o.motor_id = static_cast<std::uint8_t>(d.node);
+        o.ranges = mitRanges(e, d.joint);
+        const std::size_t j = on->host().addJoint(jointOf(d), e.effortLimit()(d.joint));
+        mit_joints_.emplace_back(r.name + "." + d.joint_name, &on->add(o, j));
+      }
+    }
+    for (std::size_t i = 0; i < r.impedance.size();) {
+      const ResolvedDrive& first = r.impedance[i];
+      if (first.kind != ActuatorKind::FdBoard) {
+        ++i;
+        continue;
+      }
+      boards_.push_back(
+          std::make_unique<PlantActuators<emulation::EmulatedHandBoard>>(*addNode(first.bus, "hand"), plant));
+      PlantActuators<emulation::EmulatedHandBoard>& b = *boards_.back();
+      std::size_t n = 0, j0 = 0;
+      std::vector<int> joints;
+      for (; i + n < r.impedance.size() && r.impedance[i + n].kind == ActuatorKind::FdBoard &&
+             r.impedance[i + n].group == first.group;
+           ++n) {
+        const ResolvedDrive& d = r.impedance[i + n];
+        const std::size_t j = b.host().addJoint(jointOf(d), e.effortLimit()(d.joint));
+        if (n == 0) j0 = j;
+        joints.push_back(d.joint);
+      }
+      emulation::EmulatedHandBoard::Options o;
+      o.scale = handScale(e, joints);
+      o.board = static_cast<std::uint8_t>(first.node);
+      o.joints = static_cast<std::uint8_t>(n);
+      emulation::EmulatedHandBoard* board = &b.add(o, j0);
+      for (std::size_t k = 0; k < n; ++k)
+        board_joints_.emplace_back(r.name + "." + r.impedance[i + k].joint_name, board);
+      i += n;
+    }
     auto frameOf = [&](const ResolvedSensor& s) {
       const int f = plant.frameHandle(r.name, s.frame_name);
       if (f < 0) {
@@ -75,6 +141,20 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
           std::make_unique<PlantImu>(*node, plant, frameOf(s), static_cast<std::uint8_t>(s.node)));
     }
   }
+}
+
+emulation::EmulatedMitMotor* EmulatedRig::mitMotor(const std::string& joint) noexcept {
+  for (auto& [n, m] : mit_joints_) {
+    if (n == joint) return m;
+  }
+  return nullptr;
+}
+
+emulation::EmulatedHandBoard* EmulatedRig::handBoard(const std::string& joint) noexcept {
+  for (auto& [n, b] : board_joints_) {
+    if (n == joint) return b;
+  }
+  return nullptr;
 }
 
 PlantFtSensor* EmulatedRig::ftSensor(const std::string& name) noexcept {

@@ -1,12 +1,15 @@
 // The emulated hardware of a scene (docs/loop.md): one SimBus per bus of the hardware section,
 // the controller's node on each, and the emulated firmware of every device hosted on the plant
-// (PlantCia402Drive for the CiA 402 drives). Plant and buses advance on ONE simulated clock:
+// (PlantCia402Drive for the CiA 402 drives, PlantActuators for the MIT motors of a bus and for
+// each hand board, PlantFtSensor and PlantImu for the sensors). Plant and buses advance on ONE simulated clock:
 // advanceTo(t) runs the buses to t (drives receive their setpoints and SYNC, apply them to the
 // plant and sample it) and then steps the plant to t, so a run is deterministic.
 // Construction allocates; advanceTo and the fault injections do not.
 #pragma once
 
 #include <mrqp/drivers/sim_bus.hpp>
+#include <mrqp/emulation/emulated_hand_board.hpp>
+#include <mrqp/emulation/emulated_mit_motor.hpp>
 
 #include <memory>
 #include <string>
@@ -14,6 +17,7 @@
 
 #include "loop/hardware_check.hpp"
 #include "loop/plant.hpp"
+#include "loop/plant_actuators.hpp"
 #include "loop/plant_cia402_drive.hpp"
 #include "loop/plant_ft_sensor.hpp"
 #include "loop/plant_imu.hpp"
@@ -45,6 +49,9 @@ class EmulatedRig {
   PlantFtSensor* ftSensor(const std::string& name) noexcept;
   PlantImu* imu(const std::string& name) noexcept;
   const std::string& ftSensorName(const PlantFtSensor* s) const;
+  /// The MIT motor of joint "ENTITY.JOINT", the hand board that has that joint (nullptr: none).
+  emulation::EmulatedMitMotor* mitMotor(const std::string& joint) noexcept;
+  emulation::EmulatedHandBoard* handBoard(const std::string& joint) noexcept;
 
  private:
   struct DriveSlot {
@@ -57,6 +64,11 @@ class EmulatedRig {
   std::vector<DriveSlot> drives_;
   std::vector<std::pair<std::string, std::unique_ptr<PlantFtSensor>>> ft_;
   std::vector<std::pair<std::string, std::unique_ptr<PlantImu>>> imus_;
+  std::vector<std::unique_ptr<PlantActuators<emulation::EmulatedMitMotor>>> mit_;      // one node per bus
+  std::vector<int> mit_bus_;                                                           // the bus of mit_[i]
+  std::vector<std::unique_ptr<PlantActuators<emulation::EmulatedHandBoard>>> boards_;  // one node per board
+  std::vector<std::pair<std::string, emulation::EmulatedMitMotor*>> mit_joints_;
+  std::vector<std::pair<std::string, emulation::EmulatedHandBoard*>> board_joints_;
   drivers::TimeNs now_ = 0;
   drivers::TimeNs max_step_ = 1000000;
 };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "scene/scene_yaml.hpp"
 
@@ -53,6 +54,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
                "' is already used (line " + std::to_string(it->second) + ")");
     }
   };
+  std::set<std::pair<int, int>> boards;  // (bus, hand board)
   auto claimBus = [&](int bus, int robot, const scene::Source& at, const std::string& field) {
     ResolvedBus& rb = out.buses[static_cast<std::size_t>(bus)];
     if (rb.robot >= 0 && rb.robot != robot) {
@@ -116,18 +118,36 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
         rob.drives.push_back(d);
       }
     }
+    std::size_t mit_groups = 0, fd_groups = 0;
     for (std::size_t g = 0; g < rh.impedance.size(); ++g) {
       const ImpedanceGroup& grp = rh.impedance[g];
-      const std::string field = robotField(r, grp.kind);
+      const bool mit = grp.kind == "mit";
+      const std::string field =
+          robotField(r, grp.kind + "[" + std::to_string(mit ? mit_groups++ : fd_groups++) + "]");
       const int bus = busIndex(spec, grp.bus, grp.source, field + ".bus");
       claimBus(bus, robot_index, grp.source, field + ".bus");
+      const BusDecl& bd = spec.buses[static_cast<std::size_t>(bus)];
+      if (!mit && bd.data_bitrate == 0) {
+        fail(grp.source, field + ".bus",
+             "a hand board sends CAN FD frames: bus '" + grp.bus + "' has no data_bitrate");
+      }
+      if (!mit && !boards.emplace(bus, grp.first_id).second) {
+        fail(grp.source, field + ".board",
+             "board " + std::to_string(grp.first_id) + " on bus '" + grp.bus + "' is already used");
+      }
       for (std::size_t j = 0; j < grp.joints.size(); ++j) {
         ResolvedDrive d;
         d.joint = joint(grp.joints[j], grp.source, field + ".joints[" + std::to_string(j) + "]");
         d.q_index = e.qIndexOfV(d.joint);
         d.joint_name = grp.joints[j];
         d.bus = bus;
-        d.node = grp.first_id + static_cast<int>(j);
+        d.node = mit ? grp.first_id + static_cast<int>(j) : grp.first_id;
+        d.kind = mit ? ActuatorKind::Mit : ActuatorKind::FdBoard;
+        d.mode = DriveMode::Csp;
+        d.group = static_cast<int>(g);
+        d.kp = grp.kp;
+        d.kd = grp.kd;
+        if (mit) claimNode(bus, d.node, grp.source, field + ".joints[" + std::to_string(j) + "]");
         rob.impedance.push_back(d);
       }
     }
@@ -170,6 +190,29 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     }
   }
 
+  // MIT motors answer on identifier 0x000, CANopen's NMT: nothing else may share their bus.
+  for (std::size_t r = 0; r < out.robots.size(); ++r) {
+    const ResolvedRobot& rob = out.robots[r];
+    for (const ResolvedDrive& m : rob.impedance) {
+      if (m.kind != ActuatorKind::Mit) continue;
+      bool shared = false;
+      for (const ResolvedDrive& d : rob.drives) shared = shared || d.bus == m.bus;
+      for (const ResolvedDrive& d : rob.impedance)
+        shared = shared || (d.bus == m.bus && d.kind != ActuatorKind::Mit);
+      for (const ResolvedSensor& x : rob.ft_sensors) shared = shared || x.bus == m.bus;
+      for (const ResolvedSensor& x : rob.imus) shared = shared || x.bus == m.bus;
+      if (shared) {
+        const RobotHardware& rh = spec.robots[r];
+        const auto grp = std::find_if(rh.impedance.begin(), rh.impedance.end(),
+                                      [](const ImpedanceGroup& g) { return g.kind == "mit"; });
+        fail(grp->source, robotField(r, "mit"),
+             "MIT motors need a bus of their own: their replies use identifier 0x000 (CANopen's NMT), "
+             "and bus '" +
+                 out.buses[static_cast<std::size_t>(m.bus)].decl.name + "' carries other devices");
+      }
+    }
+  }
+
   // The bus budget of every bus at the cycle rate of the robot it carries.
   for (std::size_t b = 0; b < out.buses.size(); ++b) {
     ResolvedBus& rb = out.buses[b];
@@ -185,10 +228,20 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     bs.cycle_hz = 1.0 / (dt * rob.divisor);
     rb.cycle_hz = bs.cycle_hz;
     drivers::BusBudget budget(bs);
-    std::uint32_t drives = 0, mit = 0, fd = 0, ft = 0, imu = 0;
+    std::uint32_t drives = 0, mit = 0, ft = 0, imu = 0;
     for (const ResolvedDrive& d : rob.drives) drives += d.bus == static_cast<int>(b) ? 1u : 0u;
-    for (const ResolvedDrive& d : rob.impedance)
-      (rb.decl.data_bitrate != 0 ? fd : mit) += d.bus == static_cast<int>(b) ? 1u : 0u;
+    std::vector<std::uint32_t> board_joints;  // per fd group on this bus
+    int group = -1;
+    for (const ResolvedDrive& d : rob.impedance) {
+      if (d.bus != static_cast<int>(b)) continue;
+      if (d.kind == ActuatorKind::Mit) {
+        ++mit;
+      } else {
+        if (d.group != group) board_joints.push_back(0u);
+        group = d.group;
+        ++board_joints.back();
+      }
+    }
     for (const ResolvedSensor& s : rob.ft_sensors) ft += s.bus == static_cast<int>(b) ? 1u : 0u;
     for (const ResolvedSensor& s : rob.imus) imu += s.bus == static_cast<int>(b) ? 1u : 0u;
     if (drives > 0 || ft > 0 || imu > 0) budget.add_sync();
@@ -197,7 +250,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
       budget.add_heartbeats(drives, 0.1);
     }
     if (mit > 0) budget.add_mit_motors(mit);
-    if (fd > 0) budget.add_hand_board(fd);
+    for (std::uint32_t joints : board_joints) budget.add_hand_board(joints);
     if (ft > 0) {
       if (rb.decl.data_bitrate != 0)
         budget.add_ft_fd(ft);

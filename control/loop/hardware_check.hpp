@@ -1,6 +1,7 @@
 // The hardware section resolved against the scene's models (docs/loop.md): entity, joint and
 // frame names to indices, buses to indices, node ids distinct per bus, one robot per bus (its
-// drives' SYNC producer), and the bus budget of drivers/ run for every bus at the robot's cycle
+// drives' SYNC producer), MIT motors alone on a classic bus (their replies use identifier 0x000,
+// CANopen's NMT), hand boards and IMUs on CAN FD buses, and the bus budget of drivers/ run for every bus at the robot's cycle
 // rate: an over-budget configuration is refused with the budget's own message. Every failure is a
 // SceneError "FILE:LINE: FIELD: message". Host-side: allocates and throws.
 #pragma once
@@ -14,14 +15,21 @@
 
 namespace mrqp::loop {
 
+/// What drives a joint: a CiA 402 drive, an MIT-mode motor, a joint of a CAN FD hand board.
+enum class ActuatorKind : std::uint8_t { Cia402 = 0, Mit, FdBoard };
+
 struct ResolvedDrive {
   int joint = -1;    ///< velocity index in the entity
   int q_index = -1;  ///< position index in the entity
   std::string joint_name;
   int bus = -1;  ///< index into ResolvedHardware::buses
-  int node = 1;
+  int node = 1;  ///< CiA 402: node id; MIT: motor id; FD: board number
   DriveMode mode = DriveMode::Csp;
   double rated_torque = 100.0;
+  ActuatorKind kind = ActuatorKind::Cia402;
+  int group = -1;    ///< MIT / FD: the group of the hardware section (an fd group is one board)
+  double kp = -1.0;  ///< MIT: the impedance's stiffness
+  double kd = -1.0;  ///< MIT: its damping
 };
 
 struct ResolvedSensor {
@@ -38,7 +46,7 @@ struct ResolvedRobot {
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
   std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
-  std::vector<ResolvedDrive> impedance;  ///< MIT / FD joints (declared)
+  std::vector<ResolvedDrive> impedance;  ///< MIT motors and FD board joints, in the order of the file
   std::vector<ResolvedSensor> ft_sensors;
   std::vector<ResolvedSensor> imus;
 };

@@ -32,11 +32,15 @@ struct Cia402Group {
   scene::Source source;
 };
 
-/// MIT-mode motors or FD hand-board joints (declared; see docs/loop.md for what this build runs).
+/// MIT-mode motors (kind "mit": motor ids first_id, first_id + 1, ... in joint order, on a classic
+/// bus of their own) or the joints of one CAN FD hand board (kind "fd": board number `board`, its
+/// joints in the board's order, on a CAN FD bus).
 struct ImpedanceGroup {
   std::string kind;  ///< "mit" or "fd"
   std::string bus;
-  int first_id = 1;
+  int first_id = 1;  ///< mit: the first motor id (1..127); fd: the board (0..15)
+  double kp = 50.0;  ///< mit: the impedance's stiffness, N·m/rad (N/m for a prismatic joint)
+  double kd = 1.0;   ///< mit: its damping, N·m·s/rad; also the damping of the quick stop
   std::vector<std::string> joints;
   scene::Source source;
 };

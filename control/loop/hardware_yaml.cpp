@@ -76,12 +76,31 @@ Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& 
 
 ImpedanceGroup readImpedance(const Reader& r, const YAML::Node& n, const std::string& path,
                              const char* kind) {
-  const Map m(r, n, path, {"bus", "first_id", "joints"});
+  const bool mit = std::string(kind) == "mit";
+  const Map m = mit ? Map(r, n, path, {"bus", "first_id", "joints", "kp", "kd"})
+                    : Map(r, n, path, {"bus", "board", "joints"});
   ImpedanceGroup g;
   g.kind = kind;
   g.bus = m.name("bus");
-  g.first_id = m.integer("first_id", 1, 127, 1);
   g.joints = jointList(m);
+  if (mit) {
+    g.first_id = m.integer("first_id", 1, 127, 1);
+    // The MIT command frame's ranges (firmware_if/mit_frame.h): kp 0..500, kd 0..5.
+    g.kp = m.number("kp", Bound::NonNegative, 50.0);
+    g.kd = m.number("kd", Bound::NonNegative, 1.0);
+    if (g.kp > 500.0) r.fail(m.require("kp"), m.at("kp"), "above 500, the MIT frame's largest stiffness");
+    if (g.kd > 5.0) r.fail(m.require("kd"), m.at("kd"), "above 5, the MIT frame's largest damping");
+    if (g.first_id + static_cast<int>(g.joints.size()) - 1 > 127) {
+      r.fail(m.require("joints"), m.at("joints"),
+             std::to_string(g.joints.size()) + " motors from id " + std::to_string(g.first_id) +
+                 " go past motor id 127");
+    }
+  } else {
+    g.first_id = m.integer("board", 0, 15, 0);
+    if (g.joints.size() > 32) {
+      r.fail(m.require("joints"), m.at("joints"), "a hand board has at most 32 joints");
+    }
+  }
   g.source = m.source();
   return g;
 }

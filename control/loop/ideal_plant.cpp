@@ -23,6 +23,20 @@ IdealPlant::IdealPlant(std::unique_ptr<problem::MultiRobotProblem> world,
   for (int e = 0; e < world_->entityCount(); ++e) max_nv = std::max(max_nv, world_->entity(e).nv());
   zeros_ = Eigen::VectorXd::Zero(max_nv);
   tracked_.assign(static_cast<std::size_t>(world_->entityCount()), 0);
+  // The robots' floating bases on a perfect ground (objects and mechanisms keep their integration).
+  std::vector<bool> robot(static_cast<std::size_t>(world_->entityCount()), false);
+  bool any = false;
+  for (int e = 0; e < world_->entityCount(); ++e) {
+    const problem::Entity& en = world_->entity(e);
+    bool actuated = false;
+    for (int k = 0; k < en.nv(); ++k) actuated = actuated || en.actuated()[static_cast<std::size_t>(k)];
+    robot[static_cast<std::size_t>(e)] = actuated;
+    any = any || (actuated && en.floatingBase());
+  }
+  if (any) {
+    ground_ = std::make_unique<ContactEstimator>(
+        *world_, robot, std::vector<int>(static_cast<std::size_t>(world_->entityCount()), -1), 2, false);
+  }
 }
 
 int IdealPlant::entityHandle(const std::string& entity) const { return world_->entityIndex(entity); }
@@ -124,6 +138,7 @@ void IdealPlant::step(double dt) noexcept {
     for (int k = 0; k < en.nv(); ++k) applyServo(e * kStride + k);
     if (tracked_[static_cast<std::size_t>(e)]) en.update();
   }
+  if (ground_) ground_->estimate();
   time_ += dt;
 }
 

@@ -6,6 +6,11 @@
 // the model. The world is a second problem built from the same scene, so the plant's state is
 // never the controller's.
 //
+// The ground is perfect too: a robot's floating base is not left to the open-loop integration of
+// its q̈ (its feet would slide: nothing in this world holds them) but follows its ground contacts,
+// whose frames stay where they were when each contact became active (the contact-kinematics fit of
+// ContactEstimator on the world, all six base coordinates and their twist).
+//
 // F/T sensors read zero here; an IMU reports its frame's orientation and the root's rates.
 #pragma once
 
@@ -13,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "loop/contact_estimator.hpp"
 #include "loop/plant.hpp"
 #include "problem/multi_robot_problem.hpp"
 
@@ -61,6 +67,7 @@ class IdealPlant final : public Plant {
   std::vector<std::vector<bool>> broken_;
   Eigen::VectorXd zeros_;
   mutable std::vector<std::uint8_t> tracked_;  // entities whose frames sensors read
+  std::unique_ptr<ContactEstimator> ground_;   // floating bases held by their ground contacts
   bool following_ = true;
   double time_ = 0.0;
 };

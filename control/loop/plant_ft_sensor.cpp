@@ -12,8 +12,8 @@ emulation::EmulatedFtSensor::Options sensorOptions(std::uint8_t node) noexcept {
 }  // namespace
 
 PlantFtSensor::PlantFtSensor(drivers::SimNode& node, Plant& plant, int frame, std::uint8_t node_id)
-    : node_(node), plant_(plant), frame_(frame), sensor_(*this, sensorOptions(node_id)) {
-  node_.set_listener(this);
+    : node_(node), plant_(plant), frame_(frame), sensor_(*this, sensorOptions(node_id)), glue_(node) {
+  glue_.add(sensor_);
 }
 
 void PlantFtSensor::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept {
@@ -23,11 +23,6 @@ void PlantFtSensor::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcep
 std::array<double, 6> PlantFtSensor::wrench(drivers::TimeNs) noexcept {
   const Vector6d w = plant_.sensorWrench(frame_);
   return {w(0), w(1), w(2), w(3), w(4), w(5)};
-}
-
-void PlantFtSensor::on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
-                               const drivers::RxFrame& rx) noexcept {
-  if (kind == drivers::ReceiveResult::Frame) (void)sensor_.on_frame(rx.frame, rx.timestamp);
 }
 
 }  // namespace mrqp::loop

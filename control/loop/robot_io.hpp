@@ -1,6 +1,7 @@
-// The robot I/O map (docs/loop.md): for every robot entity with hardware, each of its driven
-// joints as (device, index) with its place in the entity's q and v, built once at set-up from the
-// hardware section; the cycle reads and writes through it without any name lookup.
+// The robot I/O map (docs/loop.md): for every robot entity with hardware, its drivers and each of
+// its driven joints and sensors as (device, index) with its place in the entity's q and v, built
+// once at set-up from the hardware section (makeRobotIo); the cycle reads and writes through it
+// without any name lookup.
 #pragma once
 
 #include <mrqp/drivers/bus_router.hpp>
@@ -11,17 +12,24 @@
 #include <string>
 #include <vector>
 
+#include "loop/hardware_check.hpp"
 #include "loop/hardware_spec.hpp"
 
 namespace mrqp::loop {
+
+/// What a joint's command carries: a position (CiA 402 CSP: the drive derives the velocity from
+/// successive targets), a torque (CST), or an impedance (MIT-mode motors and CAN FD hand boards:
+/// position, velocity and the QP's τ as feed-forward, the device's own gains).
+enum class JointKind : std::uint8_t { Position = 0, Torque, Impedance };
 
 struct JointIo {
   drivers::JointDevice* device = nullptr;
   std::size_t index = 0;  ///< joint index within the device
   int v_index = -1;       ///< in the entity's v
   int q_index = -1;       ///< in the entity's q
-  bool torque = false;    ///< a torque-commanded joint (CST)
-  std::string name;       ///< "ENTITY.JOINT" (logs, set-up only)
+  JointKind kind = JointKind::Position;
+  bool torque = false;  ///< a torque-commanded joint (CST)
+  std::string name;     ///< "ENTITY.JOINT" (logs, set-up only)
 };
 
 /// A force/torque sensor or an IMU of a robot.
@@ -54,5 +62,13 @@ struct RobotIo {
   std::vector<double> miss_rate;       ///< averaged rate of robot cycles without fresh feedback
   double tracking_error_max = 0.0;     ///< |measured − commanded|, rad
 };
+
+/// Builds robot `robot` of the hardware section: its drivers on its buses (`routers[b]` is bus b
+/// of the hardware section) — one ArmDriver for its CiA 402 drives, one MitHandDriver for its MIT
+/// motors, one FdHandDriver for its hand boards, one FtSensorDriver and one ImuDriver for its
+/// sensors (a SYNC of their own on a bus without drives) — and each joint and sensor as (device,
+/// index), joints in that order. Set-up: allocates, throws std::runtime_error naming the robot.
+RobotIo makeRobotIo(const ResolvedHardware& hw, std::size_t robot, const problem::Entity& entity,
+                    const std::vector<drivers::BusRouter*>& routers, double dt);
 
 }  // namespace mrqp::loop

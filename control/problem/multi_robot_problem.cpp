@@ -630,12 +630,6 @@ qp::QpStatus MultiRobotProblem::solve() noexcept {
   return st;
 }
 
-void MultiRobotProblem::integrate(double dt) noexcept {
-  for (int i = 0; i < entityCount(); ++i) {
-    entity(i).integrate(x_.segment(velocityOffset(i), entity(i).nv()), dt);
-  }
-}
-
 Eigen::Ref<const Eigen::VectorXd> MultiRobotProblem::acceleration(int i) const noexcept {
   return x_.segment(velocityOffset(i), entity(i).nv());
 }

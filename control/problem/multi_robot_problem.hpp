@@ -151,8 +151,6 @@ class MultiRobotProblem {
   /// Solves the assembled QP and, when Optimal, extracts q̈, τ, λ and the contact wrenches.
   /// On any other status the previous results are kept and must not be applied.
   qp::QpStatus solve() noexcept;
-  /// Advances every entity by its q̈ over dt (semi-implicit Euler): the model as its own plant.
-  void integrate(double dt) noexcept;
 
   // ---- results of the last Optimal solve ----
   Eigen::Ref<const Eigen::VectorXd> acceleration(int entity) const noexcept;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <vector>
 
+#include "loop/solution_integrator.hpp"
 #include "loop_setup.hpp"
 
 using namespace mrqp;
@@ -24,7 +25,7 @@ std::vector<double> modelRunErrors(const std::string& text, const std::string& f
   for (long k = 0; k < cycles; ++k) {
     p.update();
     REQUIRE(p.solve() == qp::QpStatus::Optimal);
-    p.integrate(sc.settings.dt);
+    loop::integrateSolution(p, sc.settings.dt);
   }
   p.update();
   std::vector<double> out;

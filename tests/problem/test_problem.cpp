@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "loop/solution_integrator.hpp"
 #include "problem/contact.hpp"
 #include "problem/multi_robot_problem.hpp"
 #include "problem/rigid_object.hpp"
@@ -128,7 +129,7 @@ TEST_CASE("Two stacked bodies: the reaction is the action's opposite in both EoM
     REQUIRE(p.solve() == QpStatus::Optimal);
     CHECK(mrqp::testing::eomResidual(p) < 1e-9);
     CHECK(mrqp::testing::coneViolation(p) < 1e-9);
-    p.integrate(0.001);
+    mrqp::loop::integrateSolution(p, 0.001);
   }
   CHECK((p.contactForce(mid) - Eigen::Vector3d(0, 0, 1.5 * 9.81)).norm() < 1e-6);
   CHECK((p.contactForce(ground) - Eigen::Vector3d(0, 0, 4.5 * 9.81)).norm() < 1e-6);

@@ -1,6 +1,6 @@
 // Time-varying task references (eq. 26 with ġʳᵉᶠ, g̈ʳᵉᶠ): a frame position task on an actuated
 // point mass (three prismatic joints x, y, z, no gravity, no limits: the QP's q̈ is the task's
-// desired acceleration, the problem's own integrate() the ideal double integrator) follows
+// desired acceleration, the loop's integrateSolution() the ideal double integrator) follows
 // pʳᵉᶠ(t) = a (1 − cos ωt) along x.
 //
 // With the velocity and acceleration references fed forward the error obeys ë + D ė + K e = 0
@@ -18,6 +18,7 @@
 #include <memory>
 #include <vector>
 
+#include "loop/solution_integrator.hpp"
 #include "problem/constraint.hpp"
 #include "problem/multi_robot_problem.hpp"
 #include "problem/tasks/frame_position_task.hpp"
@@ -108,7 +109,7 @@ double trackingError(bool feed_forward) {
     REQUIRE(p->update() == UpdateStatus::Ok);
     if (t >= duration - period) worst = std::max(worst, std::abs(p->taskError(id)(0)));
     REQUIRE(p->solve() == QpStatus::Optimal);
-    p->integrate(kDt);
+    mrqp::loop::integrateSolution(*p, kDt);
   }
   return worst;
 }

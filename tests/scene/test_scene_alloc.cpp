@@ -10,6 +10,7 @@
 #include <string>
 
 #include "counting_allocator.hpp"
+#include "loop/solution_integrator.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 
@@ -49,7 +50,7 @@ int run(mrqp::scene::Scene& scene, int cycles, const std::string& task, const st
       ++failures;
       continue;
     }
-    p.integrate(scene.settings.dt);
+    mrqp::loop::integrateSolution(p, scene.settings.dt);
   }
   return failures;
 }

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <string>
 
+#include "loop/solution_integrator.hpp"
 #include "qp/qp_io.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
@@ -105,7 +106,7 @@ void runScene(const std::string& name) {
       CHECK(worst <= (k <= 1 ? kRelTol : kRelTolAfterRun));
     }
     REQUIRE(p.solve() == QpStatus::Optimal);
-    p.integrate(scene.settings.dt);
+    mrqp::loop::integrateSolution(p, scene.settings.dt);
   }
 }
 

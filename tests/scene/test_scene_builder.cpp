@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "loop/solution_integrator.hpp"
 #include "problem/tasks/frame_position_task.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
@@ -74,7 +75,7 @@ TEST_CASE("A joint task follows the critically damped law of eq. 26", "[scene]")
   for (int i = 0; i < 2000; ++i) {
     p.update();
     REQUIRE(p.solve() == mrqp::qp::QpStatus::Optimal);
-    p.integrate(0.001);
+    mrqp::loop::integrateSolution(p, 0.001);
   }
   // e(t) = −(1 + ωt) e^{−ωt} with ω = 2 at t = 2 s (the same law as the case study's eq. 44).
   CHECK(p.entity(0).q()(k) == Approx(1.0 - 5.0 * std::exp(-4.0)).margin(2e-3));

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "loop/solution_integrator.hpp"
 #include "problem/constraints/com_damper.hpp"
 #include "problem/contact.hpp"
 #include "problem/tasks/contact_force_task.hpp"
@@ -82,7 +83,7 @@ TEST_CASE("JVRC-1 carries a box to its target with a task on the box pose only",
     }
     const Eigen::VectorXd need = b.massMatrix() * p.acceleration(box) + b.bias();
     worst_pair = std::max(worst_pair, (gen - need).lpNorm<Eigen::Infinity>());
-    p.integrate(scene.settings.dt);
+    mrqp::loop::integrateSolution(p, scene.settings.dt);
   }
   p.update();
   const auto P = p.entity(box).framePose(0);
@@ -127,7 +128,7 @@ TEST_CASE("A Panda opens a latched door with a task on the door angle only", "[s
     worst_eom = std::max(worst_eom, mrqp::testing::eomResidual(p));
     worst_cone = std::max(worst_cone, mrqp::testing::coneViolation(p));
     max_door_tau = std::max(max_door_tau, p.torque(door).lpNorm<Eigen::Infinity>());
-    p.integrate(scene.settings.dt);
+    mrqp::loop::integrateSolution(p, scene.settings.dt);
     const double qd = d.q()(hinge), qh = d.q()(handle);
     min_handle = std::min(min_handle, qh);
     worst_latch = std::max(worst_latch, -qd + qh - 0.01);  // latch: −q_door + q_handle ≤ 0.01
@@ -155,7 +156,7 @@ TEST_CASE("A QP force task sets the squeeze on the box that the dynamics leave f
   for (int k = 0; k < 200; ++k) {
     p.update();
     REQUIRE(p.solve() == QpStatus::Optimal);
-    p.integrate(scene.settings.dt);
+    mrqp::loop::integrateSolution(p, scene.settings.dt);
   }
   CHECK(p.contactForce(lh).y() == Approx(-30.0).epsilon(1e-3));
   CHECK(p.contactForce(rh).y() == Approx(30.0).epsilon(1e-2));  // the other hand balances it

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "loop/solution_integrator.hpp"
 #include "qp/qp_io.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
@@ -248,7 +249,7 @@ bool runScene(const std::string& path, const Options& opt, std::ofstream& csv, S
       r.failed = true;
       break;
     }
-    p.integrate(dt);
+    mrqp::loop::integrateSolution(p, dt);
   }
   r.mean_iterations = static_cast<double>(iterations) / static_cast<double>(std::max(1L, r.cycles_done));
   if (opt.timing) {

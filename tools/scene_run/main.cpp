@@ -1,15 +1,18 @@
-// mrqp-scene: runs a scene file in closed loop on its own models (the QP's q̈ integrated as the
-// plant) and writes a CSV log of every task error, contact force and solver figure per cycle.
-#include <chrono>
+// mrqp-scene: runs a scene file on its own models through the loop without hardware
+// (loop::ModelLoop: the QP's q̈ integrated as the plant) and writes a CSV log of every task error,
+// contact force and solver figure per cycle, and a plot of it (scene_plot.hpp).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <exception>
+#include <fstream>
 #include <string>
 
+#include "loop/model_loop.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
+#include "scene_plot.hpp"
 
 namespace {
 
@@ -21,34 +24,6 @@ int usage(const char* msg) {
                "  Runs the scene for its settings.duration (or S) seconds and logs every N-th cycle;\n"
                "  --plot draws the task errors and contact forces against time (gnuplot).\n");
   return 2;
-}
-
-/// Task errors (log scale, top) and contact force norms (bottom) against time, with gnuplot.
-bool plot(const std::string& csv, const std::string& png, const std::string& title, int ntasks,
-          int ncontacts) {
-  FILE* gp = popen("gnuplot", "w");
-  if (!gp) return false;
-  std::fprintf(gp,
-               "set terminal pngcairo size 1000,700 font ',10' noenhanced\nset output '%s'\n"
-               "set datafile separator ','\nset key outside right\nset multiplot layout 2,1 title '%s'\n"
-               "set logscale y\nset ylabel 'task error'\nplot ",
-               png.c_str(), title.c_str());
-  for (int i = 0; i < ntasks; ++i) {
-    std::fprintf(
-        gp,
-        "%s'%s' every ::1 using 1:(column(%d) > 0 ? column(%d) : 1/0) with lines lw 2 title columnhead(%d)",
-        i ? ", " : "", csv.c_str(), 5 + i, 5 + i, 5 + i);
-  }
-  std::fprintf(gp, "\nunset logscale y\nset ylabel 'contact force (N)'\nset xlabel 't (s)'\nplot ");
-  for (int i = 0; i < ncontacts; ++i) {
-    const int c = 5 + ntasks + 3 * i;
-    std::fprintf(gp,
-                 "%s'%s' every ::1 using 1:(sqrt(column(%d)**2 + column(%d)**2 + column(%d)**2)) with lines "
-                 "title columnhead(%d)",
-                 i ? ", " : "", csv.c_str(), c, c + 1, c + 2, c);
-  }
-  std::fprintf(gp, "\nunset multiplot\n");
-  return pclose(gp) == 0;
 }
 
 }  // namespace
@@ -118,14 +93,13 @@ static int unwrappedMain(int argc, char** argv) {
   std::printf("mrqp-scene: %s: %d entities, %zu contacts, %zu tasks, %ld cycles of %g ms\n",
               scene_file.c_str(), p.entityCount(), scene.contacts.size(), scene.tasks.size(), cycles,
               dt * 1e3);
+  mrqp::loop::ModelLoop loop(p);
   double worst_us = 0.0;
   for (long k = 0; k < cycles; ++k) {
-    const double t = static_cast<double>(k) * dt;
-    const auto t0 = std::chrono::steady_clock::now();
-    p.update();
-    const auto st = p.solve();
-    const double us =
-        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    const double t = loop.time();
+    const auto st = loop.cycle();
+    const auto& timing = loop.lastTiming();
+    const double us = static_cast<double>(timing.update_ns + timing.solve_ns) * 1e-3;
     worst_us = std::max(worst_us, us);
     if (st != mrqp::qp::QpStatus::Optimal) {
       std::fprintf(stderr, "mrqp-scene: t = %.3f s: the QP failed (status %d): stopping\n", t,
@@ -133,6 +107,32 @@ static int unwrappedMain(int argc, char** argv) {
       return 1;
     }
     if (csv && k % every == 0) {
+      csv << t << "," << static_cast<int>(st) << "," << p.solver().info().iterations << "," << us;
+      for (const auto& [name, id] : scene.tasks) csv << "," << p.taskError(id).norm();
+      for (const auto& [name, id] : scene.contacts) {
+        const Eigen::Vector3d f = p.contactForce(id);
+        csv << "," << f.x() << "," << f.y() << "," << f.z();
+      }
+      csv << "\n";
+    }
+    if (k % 1000 == 0) std::printf("  t = %5.2f s\n", t);
+  }
+  std::printf("mrqp-scene: done; final task errors:\n");
+  for (const auto& [name, id] : scene.tasks)
+    std::printf("  %-16s %.3g\n", name.c_str(), p.taskError(id).norm());
+  std::printf("  slowest cycle %.0f µs (wall clock, this machine)\n", worst_us);
+  if (!png_file.empty()) {
+    csv.close();
+    const int ntasks = static_cast<int>(scene.tasks.size());
+    const int ncontacts = static_cast<int>(scene.contacts.size());
+    if (!mrqp::scene_run::plotSceneCsv(csv_file, png_file, scene_file, ntasks, ncontacts)) {
+      std::fprintf(stderr, "mrqp-scene: gnuplot failed: no plot written (the CSV is complete)\n");
+      return 1;
+    }
+    std::printf("mrqp-scene: plot written to %s\n", png_file.c_str());
+  }
+  return 0;
+}
 
 // Any exception becomes one error line and exit status 1 (docs/robustness.md).
 int main(int argc, char** argv) {
@@ -144,31 +144,4 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s: unknown error\n", "mrqp-scene");
   }
   return 1;
-}
-      csv << t << "," << static_cast<int>(st) << "," << p.solver().info().iterations << "," << us;
-      for (const auto& [name, id] : scene.tasks) csv << "," << p.taskError(id).norm();
-      for (const auto& [name, id] : scene.contacts) {
-        const Eigen::Vector3d f = p.contactForce(id);
-        csv << "," << f.x() << "," << f.y() << "," << f.z();
-      }
-      csv << "\n";
-    }
-    if (k % 1000 == 0) std::printf("  t = %5.2f s\n", t);
-    p.integrate(dt);
-  }
-  std::printf("mrqp-scene: done; final task errors:\n");
-  for (const auto& [name, id] : scene.tasks)
-    std::printf("  %-16s %.3g\n", name.c_str(), p.taskError(id).norm());
-  std::printf("  slowest cycle %.0f µs (wall clock, this machine)\n", worst_us);
-  if (!png_file.empty()) {
-    csv.close();
-    const int ntasks = static_cast<int>(scene.tasks.size());
-    const int ncontacts = static_cast<int>(scene.contacts.size());
-    if (!plot(csv_file, png_file, scene_file, ntasks, ncontacts)) {
-      std::fprintf(stderr, "mrqp-scene: gnuplot failed: no plot written (the CSV is complete)\n");
-      return 1;
-    }
-    std::printf("mrqp-scene: plot written to %s\n", png_file.c_str());
-  }
-  return 0;
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "loop/solution_integrator.hpp"
 #include "model/model_traits.hpp"
 #include "problem/model_entity.hpp"
 #include "scene/scene_builder.hpp"
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "consumer: the QP failed at cycle %d\n", k);
         return 1;
       }
-      p.integrate(scene.settings.dt);
+      mrqp::loop::integrateSolution(p, scene.settings.dt);
     }
     std::printf("scene %s: %d cycles solved\n", argv[1], cycles);
   } catch (const std::exception& e) {
