@@ -8,11 +8,12 @@
 // ---- mrqp-gen: the text below is copied into every generated model ----
 /// A joint's motion subspace S6[b] classified once, at compile time: revolute (part 0: the axis is
 /// the angular half), prismatic (part 3) or none (−1, the root); when the axis is ±e_k of the body
-/// frame (most robots), its world direction is ±column k of R_b and needs no arithmetic.
+/// frame (most robots), its world direction is ±column k of R_b and needs no arithmetic. `scale`
+/// is the sign times the joint's gain (mimic multiplier), so that a column needs no further factor.
 struct JointAxis {
   int part;
   int column;  ///< k when the axis is ±e_k, else −1
-  double sign;
+  double scale;
 };
 
 constexpr std::array<JointAxis, nbodies> makeJointAxes() noexcept {
@@ -27,55 +28,188 @@ constexpr std::array<JointAxis, nbodies> makeJointAxes() noexcept {
         if (S6[b][a.part + k] != 0.0) {
           ++nonzero;
           a.column = k;
-          a.sign = S6[b][a.part + k];
+          a.scale = S6[b][a.part + k];
         }
-      if (nonzero != 1 || (a.sign != 1.0 && a.sign != -1.0)) {
+      if (nonzero != 1 || (a.scale != 1.0 && a.scale != -1.0)) {
         a.column = -1;
-        a.sign = 1.0;
+        a.scale = 1.0;
       }
     }
+    a.scale *= gain[b];
     out[ix(b)] = a;
   }
   return out;
 }
 constexpr std::array<JointAxis, nbodies> jointAxes = makeJointAxes();
 
-/// World direction of body b's joint axis, R_b a.
-inline void jointAxisWorld(const Data& d, int b, double* out) noexcept {
+/// True when every joint axis is ±e_k of its body frame: the general rotation below is then not
+/// compiled at all (a branch the compiler would otherwise evaluate on both sides).
+constexpr bool makeAllUnitAxes() noexcept {
+  for (int b = 1; b < nbodies; ++b)
+    if (jointAxes[ix(b)].column < 0) return false;
+  return true;
+}
+constexpr bool allUnitAxes = makeAllUnitAxes();
+
+/// World direction of body b's joint axis times the joint's gain, g_b R_b a.
+inline void scaledJointAxisWorld(const Data& d, int b, double* out) noexcept {
   const JointAxis& j = jointAxes[ix(b)];
   const double* R = d.R[ix(b)].data();
-  if (j.column >= 0) {
+  if (allUnitAxes || j.column >= 0) {
     const double* col = R + 3 * j.column;
-    for (int i = 0; i < 3; ++i) out[i] = j.sign * col[i];
+    for (int i = 0; i < 3; ++i) out[i] = j.scale * col[i];
   } else {
     rotate(R, S6[b] + (j.part > 0 ? j.part : 0), out);
+    for (int i = 0; i < 3; ++i) out[i] *= j.scale;
   }
 }
 
-/// World-aligned Jacobian columns of the world point pt carried by body b (added to J): a revolute
-/// joint c gives (a, a × (pt − p_c)), a prismatic one (0, a), a = R_c's joint axis.
-inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) noexcept {
-  double* Jp = J.data();
+/// True for a body whose joint coordinate no other body shares (only mimic joints share one).
+constexpr std::array<bool, nbodies> makeCoordinateUnique() noexcept {
+  std::array<bool, nbodies> out{};
+  for (int b = 1; b < nbodies; ++b) {
+    out[ix(b)] = true;
+    for (int c = 1; c < nbodies; ++c)
+      if (c != b && vIndex[c] == vIndex[b]) out[ix(b)] = false;
+  }
+  return out;
+}
+constexpr std::array<bool, nbodies> coordinateUnique = makeCoordinateUnique();
+
+/// True for a body whose chain (the body and its ancestors with a joint) holds no coordinate twice:
+/// its Jacobian columns are then each written by one joint.
+constexpr std::array<bool, nbodies> makeChainUnique() noexcept {
+  std::array<bool, nbodies> out{};
+  for (int b = 0; b < nbodies; ++b) {
+    out[ix(b)] = true;
+    for (int c = b; c > 0; c = parentOf[c])
+      for (int e = parentOf[c]; e > 0; e = parentOf[e])
+        if (vIndex[c] == vIndex[e]) out[ix(b)] = false;
+  }
+  return out;
+}
+constexpr std::array<bool, nbodies> chainUnique = makeChainUnique();
+
+/// A run of consecutive entries of a column-major matrix that an algorithm does not assign and
+/// therefore sets to zero first: the structural zeros and the entries it accumulates (mimics).
+struct ZeroRun {
+  int start;
+  int count;
+};
+
+/// Number of runs of false in flags[0, n) and, when out is given, the runs themselves.
+template <std::size_t N>
+constexpr int collectZeroRuns(const bool (&flags)[N], int n, ZeroRun* out) noexcept {
+  int runs = 0;
+  for (int k = 0; k < n;) {
+    if (flags[k]) {
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e < n && !flags[e]) ++e;
+    if (out != nullptr) out[runs] = ZeroRun{k, e - k};
+    ++runs;
+    k = e;
+  }
+  return runs;
+}
+
+inline void zeroRuns(double* x, const ZeroRun* begin, const ZeroRun* end) noexcept {
+  for (const ZeroRun* z = begin; z != end; ++z)
+    for (int k = 0; k < z->count; ++k) x[z->start + k] = 0.0;
+}
+
+/// Entries of the Jacobian (6 × nv, column-major) of a point on body b that bodyJacobian assigns:
+/// the free-flyer columns and, when b's chain holds no coordinate twice, the chain's columns.
+constexpr void markJacobianAssigned(int b, bool (&assigned)[6 * nv + 1]) noexcept {
+  for (int k = 0; k < 6 * nv; ++k) assigned[k] = floating_base && k < 36;
+  if (!chainUnique[ix(b)]) return;
+  for (int c = b; c > 0; c = parentOf[c])
+    for (int i = 0; i < 6; ++i) assigned[6 * vIndex[c] + i] = true;
+}
+
+constexpr int countJacobianZeroRuns() noexcept {
+  int n = 0;
+  for (int b = 0; b < nbodies; ++b) {
+    bool assigned[6 * nv + 1] = {};
+    markJacobianAssigned(b, assigned);
+    n += collectZeroRuns(assigned, 6 * nv, nullptr);
+  }
+  return n;
+}
+constexpr int nJacobianZeroRuns = countJacobianZeroRuns();
+
+/// The zero runs of every body's Jacobian: body b's are runs[first[b]] .. runs[first[b + 1] − 1].
+struct JacobianZeroRuns {
+  std::array<ZeroRun, ix(nJacobianZeroRuns)> runs;
+  std::array<int, ix(nbodies + 1)> first;
+};
+
+constexpr JacobianZeroRuns makeJacobianZeroRuns() noexcept {
+  JacobianZeroRuns out{};
+  int n = 0;
+  for (int b = 0; b < nbodies; ++b) {
+    bool assigned[6 * nv + 1] = {};
+    markJacobianAssigned(b, assigned);
+    out.first[ix(b)] = n;
+    ZeroRun buffer[3 * nv + 1] = {};
+    const int k = collectZeroRuns(assigned, 6 * nv, buffer);
+    for (int i = 0; i < k; ++i) out.runs[ix(n + i)] = buffer[i];
+    n += k;
+  }
+  out.first[ix(nbodies)] = n;
+  return out;
+}
+constexpr JacobianZeroRuns jacobianZeroRuns = makeJacobianZeroRuns();
+
+/// *out = x (Assign) or *out += x.
+template <bool Assign>
+inline void put(double* out, double x) noexcept {
+  if (Assign)
+    *out = x;
+  else
+    *out += x;
+}
+
+/// Columns of b's chain in the world-aligned Jacobian of the world point pt carried by body b: a
+/// revolute joint c gives g_c (a, a × (pt − p_c)), a prismatic one g_c (0, a), a = R_c's joint
+/// axis; assigned (Assign, when b's chain holds no coordinate twice) or added.
+template <bool Assign>
+inline void chainColumns(const Data& d, int b, const double* pt, double* Jp) noexcept {
   for (int c = b; c > 0; c = parentOf[c]) {
     double a[3];
-    jointAxisWorld(d, c, a);
-    double* col = Jp + 6 * vIndex[c];
-    const double g = gain[c];
+    scaledJointAxisWorld(d, c, a);
+    double* out = Jp + 6 * vIndex[c];
     if (jointAxes[ix(c)].part == 0) {
       const double* pc = d.p[ix(c)].data();
-      const double dp[3] = {pt[0] - pc[0], pt[1] - pc[1], pt[2] - pc[2]};
-      col[0] += g * a[0];
-      col[1] += g * a[1];
-      col[2] += g * a[2];
-      col[3] += g * (a[1] * dp[2] - a[2] * dp[1]);
-      col[4] += g * (a[2] * dp[0] - a[0] * dp[2]);
-      col[5] += g * (a[0] * dp[1] - a[1] * dp[0]);
+      const double dp0 = pt[0] - pc[0], dp1 = pt[1] - pc[1], dp2 = pt[2] - pc[2];
+      put<Assign>(out, a[0]);
+      put<Assign>(out + 1, a[1]);
+      put<Assign>(out + 2, a[2]);
+      put<Assign>(out + 3, a[1] * dp2 - a[2] * dp1);
+      put<Assign>(out + 4, a[2] * dp0 - a[0] * dp2);
+      put<Assign>(out + 5, a[0] * dp1 - a[1] * dp0);
     } else {
-      col[3] += g * a[0];
-      col[4] += g * a[1];
-      col[5] += g * a[2];
+      put<Assign>(out + 3, a[0]);
+      put<Assign>(out + 4, a[1]);
+      put<Assign>(out + 5, a[2]);
+      if (Assign) out[0] = out[1] = out[2] = 0.0;
     }
   }
+}
+
+/// World-aligned Jacobian of the world point pt carried by body b, written whole, each entry once
+/// where no mimic joints share a column: the columns no joint of b's chain moves (and the columns
+/// shared by mimic joints, then accumulated) are zeroed (jacobianZeroRuns), the others assigned.
+inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) noexcept {
+  double* Jp = J.data();
+  zeroRuns(Jp, jacobianZeroRuns.runs.data() + jacobianZeroRuns.first[ix(b)],
+           jacobianZeroRuns.runs.data() + jacobianZeroRuns.first[ix(b + 1)]);
+  if (chainUnique[ix(b)])
+    chainColumns<true>(d, b, pt, Jp);
+  else
+    chainColumns<false>(d, b, pt, Jp);
   if (floating_base) {
     const double* R0 = d.R[0].data();
     double dp[3];
@@ -84,9 +218,10 @@ inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) no
       double lin[3];
       cross(R0 + 3 * k, dp, lin);  // −[dp]× R0 e_k
       for (int i = 0; i < 3; ++i) {
-        Jp[6 * k + i] += R0[3 * k + i];
-        Jp[6 * k + 3 + i] += lin[i];
-        Jp[6 * (3 + k) + 3 + i] += R0[3 * k + i];
+        Jp[6 * k + i] = R0[3 * k + i];
+        Jp[6 * k + 3 + i] = lin[i];
+        Jp[6 * (3 + k) + i] = 0.0;
+        Jp[6 * (3 + k) + 3 + i] = R0[3 * k + i];
       }
     }
   }
@@ -105,17 +240,61 @@ inline void bodyToFrame(int frame, const double* x, double* out) noexcept {
   for (int i = 0; i < 3; ++i) out[i] = Rf[i] * x[0] + Rf[3 + i] * x[1] + Rf[6 + i] * x[2];
 }
 
+/// Entries of the mass matrix (nv × nv, column-major) that crba assigns: the free-flyer block and,
+/// for joints whose coordinate no other joint shares, their diagonal entry, their free-flyer row
+/// and column, and their entries with each ancestor joint of the same kind. Every other entry is
+/// either a structural zero (two joints on different branches) or accumulated (mimic joints).
+constexpr void markMassAssigned(bool (&assigned)[nv * nv + 1]) noexcept {
+  for (int k = 0; k < nv * nv; ++k) assigned[k] = false;
+  if (floating_base)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) assigned[i + nv * j] = true;
+  for (int b = 1; b < nbodies; ++b) {
+    if (!coordinateUnique[ix(b)]) continue;
+    const int vb = vIndex[b];
+    assigned[vb + nv * vb] = true;
+    if (floating_base)
+      for (int k = 0; k < 6; ++k) assigned[k + nv * vb] = assigned[vb + nv * k] = true;
+    for (int c = parentOf[b]; c > 0; c = parentOf[c])
+      if (coordinateUnique[ix(c)]) assigned[vb + nv * vIndex[c]] = assigned[vIndex[c] + nv * vb] = true;
+  }
+}
+
+constexpr int countMassZeroRuns() noexcept {
+  bool assigned[nv * nv + 1] = {};
+  markMassAssigned(assigned);
+  return collectZeroRuns(assigned, nv * nv, nullptr);
+}
+constexpr int nMassZeroRuns = countMassZeroRuns();
+
+constexpr std::array<ZeroRun, ix(nMassZeroRuns)> makeMassZeroRuns() noexcept {
+  bool assigned[nv * nv + 1] = {};
+  markMassAssigned(assigned);
+  ZeroRun buffer[ix(nMassZeroRuns) + 1] = {};
+  collectZeroRuns(assigned, nv * nv, buffer);
+  std::array<ZeroRun, ix(nMassZeroRuns)> out{};
+  for (int i = 0; i < nMassZeroRuns; ++i) out[ix(i)] = buffer[i];
+  return out;
+}
+constexpr std::array<ZeroRun, ix(nMassZeroRuns)> massZeroRuns = makeMassZeroRuns();
+
 /// Composite-rigid-body algorithm in one frame, O: axes aligned with the world at the root's origin.
-/// Each body's inertia is moved to O once (m, h, I about O); a body's composite is then the plain
-/// sum of its subtree's, with no transform between a body and its parent; a joint is the Plücker
-/// vector s_b = (w, r_b × w + u) at O (r_b = p_b − p_0; (w, u) = R_b S_b), F_b = I^C_b s_b and
-/// M(v_c, v_b) = g_b g_c s_cᵀ F_b for b and each ancestor c with a joint. The free-flyer's columns
-/// are F_b in root axes, and on return d.cm/ch/cI[0] hold the whole robot's inertia in root axes
-/// at the root origin (the free-flyer block). Needs d.Rl, d.pl (localTransforms); sets d.R, d.p.
+/// Each body's inertia is moved to O once (m, h, I about O: I_O = E I Eᵀ + Σ_{k≠i} r_k (Eh_k + h_k)
+/// on the diagonal, −(Eh_i r_j + r_i h_j) off it, h = E h_b + m r); a body's composite is then the
+/// plain sum of its subtree's, with no transform between a body and its parent; a joint is the
+/// Plücker vector s_b = g_b (w, r_b × w + u) at O (r_b = p_b − p_0; (w, u) = R_b S_b; g_b the mimic
+/// gain), F_b = I^C_b s_b and M(v_c, v_b) = s_cᵀ F_b for b and each ancestor c with a joint. The
+/// free-flyer's columns are F_b in root axes. M is written once: the structural zeros and the
+/// entries mimic joints accumulate are zeroed first (massZeroRuns), every other entry is assigned;
+/// the caller assigns the free-flyer block from d.cm/ch/cI[0], which hold on return the whole
+/// robot's inertia in root axes at the root origin. Needs d.Rl, d.pl (localTransforms); sets d.R, d.p.
 inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
   worldPoses(d);
   double* Mp = M.data();
+  zeroRuns(Mp, massZeroRuns.data(), massZeroRuns.data() + nMassZeroRuns);
   const double* p0 = d.p[0].data();
+  double S[nbodies][6];   // g_b s_b at O
+  double C[nbodies][10];  // m, h, I (xx, yx, zx, yy, zy, zz) at O: the body's own, then its composite
   for (int b = 0; b < nbodies; ++b) {
     const double* E = d.R[ix(b)].data();
     const double r[3] = {d.p[ix(b)](0) - p0[0], d.p[ix(b)](1) - p0[1], d.p[ix(b)](2) - p0[2]};
@@ -125,33 +304,25 @@ inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
     rotate(E, bodyFirstMoment[b], Eh);
     double EI[9];  // E I, column-major
     for (int j = 0; j < 3; ++j) rotate(E, I + 3 * j, EI + 3 * j);
-    const double rEh = r[0] * Eh[0] + r[1] * Eh[1] + r[2] * Eh[2];
-    const double rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    double* Io = d.cI[ix(b)].data();
-    for (int j = 0; j < 3; ++j)
-      for (int i = j; i < 3; ++i) {
-        double x = EI[i] * E[j] + EI[i + 3] * E[j + 3] + EI[i + 6] * E[j + 6];  // (E I Eᵀ)(i, j)
-        x -= Eh[i] * r[j] + r[i] * Eh[j] + m * r[i] * r[j];
-        if (i == j) x += 2.0 * rEh + m * rr;
-        Io[i + 3 * j] = x;
-        Io[j + 3 * i] = x;
-      }
-    for (int i = 0; i < 3; ++i) d.ch[ix(b)](i) = Eh[i] + m * r[i];
-    d.cm[ix(b)] = m;
-  }
-  for (int b = nbodies - 1; b > 0; --b) {
-    const int p = parentOf[b];
-    d.cm[ix(p)] += d.cm[ix(b)];
-    d.ch[ix(p)] += d.ch[ix(b)];
-    d.cI[ix(p)] += d.cI[ix(b)];
-  }
-  double S[nbodies][6];
-  for (int b = 1; b < nbodies; ++b) {
+    double* c = C[b];
+    const double h[3] = {Eh[0] + m * r[0], Eh[1] + m * r[1], Eh[2] + m * r[2]};
+    const double t[3] = {r[0] * (Eh[0] + h[0]), r[1] * (Eh[1] + h[1]), r[2] * (Eh[2] + h[2])};
+    auto eie = [&](int i, int j) { return EI[i] * E[j] + EI[i + 3] * E[j + 3] + EI[i + 6] * E[j + 6]; };
+    c[0] = m;
+    c[1] = h[0];
+    c[2] = h[1];
+    c[3] = h[2];
+    c[4] = eie(0, 0) + t[1] + t[2];
+    c[5] = eie(1, 0) - (Eh[1] * r[0] + r[1] * h[0]);
+    c[6] = eie(2, 0) - (Eh[2] * r[0] + r[2] * h[0]);
+    c[7] = eie(1, 1) + t[0] + t[2];
+    c[8] = eie(2, 1) - (Eh[2] * r[1] + r[2] * h[1]);
+    c[9] = eie(2, 2) + t[0] + t[1];
+    if (b == 0) continue;
     double a[3];
-    jointAxisWorld(d, b, a);
+    scaledJointAxisWorld(d, b, a);
     double* s = S[b];
     if (jointAxes[ix(b)].part == 0) {
-      const double r[3] = {d.p[ix(b)](0) - p0[0], d.p[ix(b)](1) - p0[1], d.p[ix(b)](2) - p0[2]};
       s[0] = a[0];
       s[1] = a[1];
       s[2] = a[2];
@@ -166,51 +337,59 @@ inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
   const double* R0 = d.R[0].data();
   for (int b = nbodies - 1; b > 0; --b) {
     const double* s = S[b];
-    const double* I = d.cI[ix(b)].data();
-    const double* h = d.ch[ix(b)].data();
-    const double m = d.cm[ix(b)];
+    const double* c = C[b];
     // F = I^C s: n = I w + h × v, f = m v − h × w.
-    double F[6];
-    double hv[3], hw[3];
-    cross(h, s + 3, hv);
-    cross(h, s, hw);
-    for (int i = 0; i < 3; ++i) {
-      F[i] = I[i] * s[0] + I[i + 3] * s[1] + I[i + 6] * s[2] + hv[i];
-      F[3 + i] = m * s[3 + i] - hw[i];
-    }
+    const double F[6] = {c[4] * s[0] + c[5] * s[1] + c[6] * s[2] + (c[2] * s[5] - c[3] * s[4]),
+                         c[5] * s[0] + c[7] * s[1] + c[8] * s[2] + (c[3] * s[3] - c[1] * s[5]),
+                         c[6] * s[0] + c[8] * s[1] + c[9] * s[2] + (c[1] * s[4] - c[2] * s[3]),
+                         c[0] * s[3] - (c[2] * s[2] - c[3] * s[1]),
+                         c[0] * s[4] - (c[3] * s[0] - c[1] * s[2]),
+                         c[0] * s[5] - (c[1] * s[1] - c[2] * s[0])};
+    double* cp = C[parentOf[b]];
+    for (int k = 0; k < 10; ++k) cp[k] += c[k];
     const int vi = vIndex[b];
-    const double gi = gain[b];
-    Mp[vi + nv * vi] +=
-        gi * gi * (s[0] * F[0] + s[1] * F[1] + s[2] * F[2] + s[3] * F[3] + s[4] * F[4] + s[5] * F[5]);
-    for (int c = parentOf[b]; c > 0; c = parentOf[c]) {
-      const double* sc = S[c];
+    double* col = Mp + nv * vi;
+    const bool unique = coordinateUnique[ix(b)];
+    const double diag = s[0] * F[0] + s[1] * F[1] + s[2] * F[2] + s[3] * F[3] + s[4] * F[4] + s[5] * F[5];
+    if (unique)
+      col[vi] = diag;
+    else
+      col[vi] += diag;
+    for (int a = parentOf[b]; a > 0; a = parentOf[a]) {
+      const double* sa = S[a];
       const double x =
-          gi * gain[c] *
-          (sc[0] * F[0] + sc[1] * F[1] + sc[2] * F[2] + sc[3] * F[3] + sc[4] * F[4] + sc[5] * F[5]);
-      Mp[vi + nv * vIndex[c]] += x;
-      Mp[vIndex[c] + nv * vi] += x;
+          sa[0] * F[0] + sa[1] * F[1] + sa[2] * F[2] + sa[3] * F[3] + sa[4] * F[4] + sa[5] * F[5];
+      const int va = vIndex[a];
+      if (unique && coordinateUnique[ix(a)]) {
+        col[va] = x;
+        Mp[vi + nv * va] = x;
+      } else {
+        col[va] += x;
+        Mp[vi + nv * va] += x;
+      }
     }
     if (floating_base) {
       double Fr[6];
       rotateT(R0, F, Fr);
       rotateT(R0, F + 3, Fr + 3);
-      for (int k = 0; k < 6; ++k) {
-        Mp[k + nv * vi] += gi * Fr[k];
-        Mp[vi + nv * k] += gi * Fr[k];
-      }
+      if (unique)
+        for (int k = 0; k < 6; ++k) col[k] = Mp[vi + nv * k] = Fr[k];
+      else
+        for (int k = 0; k < 6; ++k) {
+          col[k] += Fr[k];
+          Mp[vi + nv * k] += Fr[k];
+        }
     }
   }
-  if (floating_base) {
-    // The whole robot in root axes: I ← R0ᵀ I R0, h ← R0ᵀ h.
-    double T[9], Ir[9];
-    const double* I = d.cI[0].data();
-    for (int j = 0; j < 3; ++j) rotateT(R0, I + 3 * j, T + 3 * j);  // R0ᵀ I
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i)
-        Ir[i + 3 * j] = T[i] * R0[3 * j] + T[i + 3] * R0[3 * j + 1] + T[i + 6] * R0[3 * j + 2];
-    for (int k = 0; k < 9; ++k) d.cI[0].data()[k] = Ir[k];
-    double hr[3];
-    rotateT(R0, d.ch[0].data(), hr);
-    for (int i = 0; i < 3; ++i) d.ch[0](i) = hr[i];
-  }
+  // The whole robot at the root origin in root axes: I ← R0ᵀ I R0, h ← R0ᵀ h.
+  const double* c0 = C[0];
+  const double I0[9] = {c0[4], c0[5], c0[6], c0[5], c0[7], c0[8], c0[6], c0[8], c0[9]};
+  double T[9];
+  for (int j = 0; j < 3; ++j) rotateT(R0, I0 + 3 * j, T + 3 * j);  // R0ᵀ I
+  double* Ir = d.cI[0].data();
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      Ir[i + 3 * j] = T[i] * R0[3 * j] + T[i + 3] * R0[3 * j + 1] + T[i + 6] * R0[3 * j + 2];
+  rotateT(R0, c0 + 1, d.ch[0].data());
+  d.cm[0] = c0[0];
 }

@@ -46,8 +46,7 @@ void frameJacobian(const Data& d, int frame, const Eigen::Vector3d& point, Refer
   pointOnBody(frame, point.data(), r);
   rotate(d.R[ix(b)].data(), r, pt);
   for (int i = 0; i < 3; ++i) pt[i] += d.p[ix(b)](i);
-  J.setZero();
-  bodyJacobian(d, b, pt, J);
+  bodyJacobian(d, b, pt, J);  // writes all of J
   if (rf == ReferenceFrame::Local) {
     double* Jp = J.data();
     for (int c = 0; c < nv; ++c) {

@@ -300,6 +300,9 @@ void Emitter::emitLocalTransforms(std::ostream& o) const {
   } else {
     o << "  d.Rl[0].setIdentity();\n  d.pl[0].setZero();\n";
   }
+  // The text of each body's Rl (9 entries, column-major) and pl (3): worldPoses drops the products
+  // with the entries that are exactly 0 and folds those that are exactly ±1.
+  std::vector<std::array<std::string, 12>> local(idx(nb_));
   for (int b = 1; b < nb_; ++b) {
     const TreeBody& body = t_.bodies[idx(b)];
     const TreeJoint& j = body.joint;
@@ -328,21 +331,61 @@ void Emitter::emitLocalTransforms(std::ostream& o) const {
       for (int row = 0; row < 3; ++row) {
         LinearExpr e;
         e.add(A(row, col), "").add(B(row, col), "c").add(C(row, col), "s");
+        local[idx(b)][idx(row + 3 * col)] = e.str();
         o << "    R[" << row + 3 * col << "] = " << e.str() << ";\n";
       }
     for (int k = 0; k < 3; ++k) {
       LinearExpr e;
       e.add(t0(k), "").add(dir(k), var);
+      local[idx(b)][idx(9 + k)] = e.str();
       o << "    t[" << k << "] = " << e.str() << ";\n";
     }
     o << "  }\n";
   }
   o << "}\n\n";
+  // World poses R = Rp Rl, p = Rp pl + pp (composePose's sums, in its order, without the terms
+  // whose Rl or pl entry is exactly 0 and with the factors exactly ±1 folded: bit-identical).
   o << "inline void worldPoses(Data& d) noexcept {\n  d.R[0] = d.Rl[0];\n  d.p[0] = d.pl[0];\n";
+  auto product = [](const std::array<std::string, 3>& x, const std::array<std::string, 3>& xText) {
+    std::string out;
+    for (int k = 0; k < 3; ++k) {
+      const std::string& v = xText[idx(k)];
+      if (v == "0.0") continue;
+      const bool neg = v == "-1.0";
+      const std::string term = v == "1.0" || neg ? x[idx(k)] : x[idx(k)] + " * " + v;
+      out += out.empty() ? (neg ? "-" : "") + term : (neg ? " - " : " + ") + term;
+    }
+    return out;
+  };
   for (int b = 1; b < nb_; ++b) {
     const int p = t_.bodies[idx(b)].parent;
-    o << "  composePose(d.R[" << p << "].data(), d.p[" << p << "].data(), d.Rl[" << b << "].data(), d.pl["
-      << b << "].data(), d.R[" << b << "].data(), d.p[" << b << "].data());\n";
+    std::ostringstream body;
+    for (int col = 0; col < 4; ++col)
+      for (int row = 0; row < 3; ++row) {
+        const std::array<std::string, 3> x = {"Rp[" + str(row) + "]", "Rp[" + str(row + 3) + "]",
+                                              "Rp[" + str(row + 6) + "]"};
+        std::array<std::string, 3> v;
+        for (int k = 0; k < 3; ++k) {
+          const std::string& text = local[idx(b)][idx(col < 3 ? k + 3 * col : 9 + k)];
+          const bool constant = text.find_first_of("csx") == std::string::npos;  // no c, s or x symbol
+          v[idx(k)] = constant ? text : (col < 3 ? "Rl[" + str(k + 3 * col) + "]" : "pl[" + str(k) + "]");
+        }
+        const std::string sum = product(x, v);
+        if (col < 3) {
+          body << "    R[" << row + 3 * col << "] = " << (sum.empty() ? "0.0" : sum) << ";\n";
+        } else {
+          const std::string pp = "d.p[" + str(p) + "](" + str(row) + ")";
+          body << "    d.p[" << b << "](" << row << ") = " << (sum.empty() ? pp : "(" + sum + ") + " + pp)
+               << ";\n";
+        }
+      }
+    const std::string text = body.str();
+    // Rp copied first: the stores to R cannot then force its entries to be read again.
+    o << "  {  // body " << b << "\n    const double* P = d.R[" << p << "].data();\n"
+      << "    const double Rp[9] = {P[0], P[1], P[2], P[3], P[4], P[5], P[6], P[7], P[8]};\n";
+    if (text.find("Rl[") != std::string::npos) o << "    const double* Rl = d.Rl[" << b << "].data();\n";
+    if (text.find("pl[") != std::string::npos) o << "    const double* pl = d.pl[" << b << "].data();\n";
+    o << "    double* R = d.R[" << b << "].data();\n" << text << "  }\n";
   }
   o << "}\n\n";
 }
