@@ -1,18 +1,53 @@
 // The controller's cycle allocates nothing: 10,000 cycles of the loop with the CAN drivers on the
-// simulated buses and the plant behind them, counted by the replaced global allocator (which also
+// simulated buses and the plant behind them (panda_door, jvrc1_box, and panda_door with its
+// gripper on an MIT motor and on a CAN FD hand board), counted by the replaced global allocator (which also
 // sees Eigen's heap: Eigen allocates through malloc), with Eigen's run-time check armed in the
 // loop's own sources compiled here with EIGEN_RUNTIME_NO_MALLOC.
 #include <catch2/catch.hpp>
+
+#include <string>
 
 #include "counting_allocator.hpp"
 #include "loop_setup.hpp"
 
 using looptest::LoopSetup;
 
+namespace {
+
+/// panda_door with its gripper on hand actuators: an MIT motor on a bus of its own, or a CAN FD
+/// hand board.
+std::string withHand(bool mit) {
+  std::string t = looptest::sceneText("panda_door.yaml");
+  auto replace = [&t](const std::string& from, const std::string& to) {
+    const std::size_t at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    t.replace(at, from.size(), to);
+  };
+  replace("    - {name: arm1, bitrate: 1000000}\n",
+          mit ? "    - {name: arm1, bitrate: 1000000}\n    - {name: hand, bitrate: 1000000}\n"
+              : "    - {name: arm1, bitrate: 1000000}\n    - {name: hand, bitrate: 1000000, data_bitrate: "
+                "5000000}\n");
+  replace("joints: [panda_joint6, panda_joint7, panda_finger_joint1]}",
+          "joints: [panda_joint6, panda_joint7]}");
+  replace("        - {frame: panda_link8, bus: arm1, node: 20}\n",
+          std::string("        - {frame: panda_link8, bus: arm1, node: 20}\n") +
+              (mit ? "      mit:\n        - {bus: hand, first_id: 3, joints: [panda_finger_joint1]}\n"
+                   : "      fd:\n        - {bus: hand, board: 1, joints: [panda_finger_joint1]}\n"));
+  return t;
+}
+
+}  // namespace
+
 TEST_CASE("loop: 10,000 loop cycles over CAN with the plant allocate nothing", "[loop][realtime]") {
-  for (const char* name : {"panda_door.yaml", "jvrc1_box.yaml"}) {
+  const std::string door_mit = withHand(true), door_fd = withHand(false);
+  for (const char* name :
+       {"panda_door.yaml", "jvrc1_box.yaml", "door with an MIT finger", "door with an FD board"}) {
     INFO(name);
-    LoopSetup s(looptest::sceneText(name), name);
+    const std::string n = name;
+    const std::string text = n == "door with an MIT finger" ? door_mit
+                             : n == "door with an FD board" ? door_fd
+                                                            : looptest::sceneText(name);
+    LoopSetup s(text, n.find(".yaml") == std::string::npos ? "panda_door.yaml" : name);
     mrqp::loop::LogRing ring;
     s.ctrl->attachLog(ring);
     ring.freeze(16);  // full after 16 rows: the dropping path runs too
