@@ -95,6 +95,16 @@ FaultInjector::FaultInjector(const std::vector<FaultRequest>& requests, Emulated
         }
         if (t.bus < 0)
           throw std::invalid_argument(spec + ": no bus '" + q.device + "' in the hardware section");
+      } else if (!q.device.empty() &&
+                 (rig->mitMotor(q.device) != nullptr || rig->handBoard(q.device) != nullptr)) {
+        if (q.kind != "heartbeat-loss" && q.kind != "corrupt-frames" && q.kind != "nan-feedback") {
+          throw std::invalid_argument(spec +
+                                      ": not emulated for MIT motors and hand boards "
+                                      "(heartbeat-loss, corrupt-frames and nan-feedback are)");
+        }
+        t.mit = rig->mitMotor(q.device);
+        t.board = rig->handBoard(q.device);
+        r.device = q.device;
       } else {
         t.drive = q.device.empty() ? rig->firstDrive() : rig->drive(q.device);
         if (t.drive == nullptr) {
@@ -115,7 +125,19 @@ void FaultInjector::beforeCycle(double t, drivers::TimeNs now) noexcept {
     const Target& tg = targets_[i];
     if (r.injected_at_s >= 0.0 || t + 1e-12 < r.at_s) continue;
     r.injected_at_s = t;
-    if (r.kind == "heartbeat-loss") {
+    if (tg.mit != nullptr || tg.board != nullptr) {
+      // The hand actuators' own faults: silence, corrupt replies, a tripped controller.
+      if (r.kind == "heartbeat-loss") {
+        if (tg.mit != nullptr) tg.mit->set_silent(true);
+        if (tg.board != nullptr) tg.board->set_silent(true);
+      } else if (r.kind == "corrupt-frames") {
+        if (tg.mit != nullptr) tg.mit->corrupt_replies(1000000u);
+        if (tg.board != nullptr) tg.board->corrupt_feedback(1000000u);
+      } else if (r.kind == "nan-feedback") {
+        if (tg.mit != nullptr) tg.mit->raise_fault(now);
+        if (tg.board != nullptr) tg.board->raise_fault(now);
+      }
+    } else if (r.kind == "heartbeat-loss") {
       tg.drive->stopHeartbeat(now);
     } else if (r.kind == "frame-loss") {
       tg.drive->setFrameLoss(50);  // 5 %

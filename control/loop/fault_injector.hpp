@@ -2,7 +2,9 @@
 // resolved at set-up against the hardware section and injected at its time where such a fault
 // happens — in the emulated firmware (heartbeat-loss, frame-loss, corrupt-frames, nan-feedback,
 // stale-ft), on the bus (bus-off: the controller's node meets a burst of bit errors) — never in the
-// controller; `infeasible` adds to the problem a joint inequality that no acceleration within the
+// controller (a DEVICE that is a joint of an MIT motor or a hand board: heartbeat-loss, which
+// those protocols do not have, silences the firmware; corrupt-frames corrupts its replies;
+// nan-feedback raises its fault); `infeasible` adds to the problem a joint inequality that no acceleration within the
 // joint limits can satisfy. Detection and safe-state times are read back from the controller.
 #pragma once
 
@@ -48,6 +50,8 @@ class FaultInjector {
   struct Target {
     PlantCia402Drive* drive = nullptr;
     PlantFtSensor* ft = nullptr;
+    emulation::EmulatedMitMotor* mit = nullptr;     ///< an MIT motor's joint (heartbeat-loss: silent)
+    emulation::EmulatedHandBoard* board = nullptr;  ///< a hand board's joint (heartbeat-loss: silent)
     int bus = -1;
     int robot = -1;
     int joint = -1;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <string>
 
+#include "loop/fault_injector.hpp"
 #include "loop/solution_integrator.hpp"
 #include "loop_setup.hpp"
 
@@ -170,6 +171,45 @@ TEST_CASE("loop: hand: a faulted hand board stops the controller as a driver fau
   CHECK((s.ctrl->stopFlags() & drivers::fault::kDeviceFault) != 0u);
   CHECK(s.ctrl->stopDevice() == "panda.panda_finger_joint1");
   CHECK(s.ctrl->stopCycle() - fault_at <= 8u);
+}
+
+TEST_CASE("loop: hand: --fault on a hand actuator's joint is injected in its firmware and detected",
+          "[loop][hand][faults]") {
+  struct Case {
+    const std::string* bus;
+    const std::string* hand;
+    const char* spec;
+    std::uint32_t flag;
+  };
+  const Case cases[] = {
+      {&kMitBus, &kMit, "corrupt-frames@0.2:panda.panda_finger_joint1", drivers::fault::kCorruptFrame},
+      {&kMitBus, &kMit, "heartbeat-loss@0.2:panda.panda_finger_joint1", drivers::fault::kFeedbackMissing},
+      {&kFdBus, &kFd, "nan-feedback@0.2:panda.panda_finger_joint1", drivers::fault::kDeviceFault},
+  };
+  for (const Case& c : cases) {
+    INFO(c.spec);
+    LoopSetup s(handScene(*c.bus, *c.hand), "hand.yaml");
+    loop::FaultInjector inj({loop::parseFaultRequest(c.spec)}, s.rig.get(), *s.ctrl, s.hw);
+    REQUIRE(s.boot());
+    const double dt = s.sc.settings.dt;
+    for (long k = 0; k < 400; ++k) {
+      inj.beforeCycle(static_cast<double>(k) * dt, s.now);
+      s.cycle();
+      inj.afterCycle();
+    }
+    const loop::FaultRecord& r = inj.records().at(0);
+    CHECK(r.device == "panda.panda_finger_joint1");
+    CHECK(s.ctrl->stopReason() == loop::StopReason::DriverFault);
+    CHECK((s.ctrl->stopFlags() & c.flag) != 0u);
+    REQUIRE(r.detected_at_s >= r.injected_at_s);
+    // Within feedback_missing_cycles + 2 robot cycles of 4 ms; safe commands in the same cycle.
+    CHECK(r.detected_at_s - r.injected_at_s <= 0.004 * (s.hw.feedback_missing_cycles + 2) + 1e-9);
+    CHECK(r.safe_state_at_s - r.detected_at_s <= 0.001 + 1e-9);
+  }
+  LoopSetup s(handScene(kMitBus, kMit), "hand.yaml");
+  CHECK_THROWS_WITH(loop::FaultInjector({loop::parseFaultRequest("frame-loss@0.2:panda.panda_finger_joint1")},
+                                        s.rig.get(), *s.ctrl, s.hw),
+                    Catch::Contains("not emulated for MIT motors and hand boards"));
 }
 
 TEST_CASE("loop: hand: MIT motors need a bus of their own, hand boards a CAN FD bus", "[loop][hand]") {
