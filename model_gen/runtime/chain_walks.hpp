@@ -1,5 +1,6 @@
 // Algorithms of every generated model that walk its tables (S6, vIndex, gain, parentOf,
-// subtreeMass, bodyMass, bodyFirstMoment, bodyRotationalInertia, frame_R, frame_p) and its Data:
+// subtreeMass, bodyMass, bodyFirstMoment, bodyRotationalInertia, comDiagonal, bodyCom, bodyComInertia, frame_R,
+// frame_p) and its Data:
 // mrqp-gen copies the text after the marker line into the anonymous namespace of each generated
 // .cpp, after the model's tables and kernels.hpp. Compiled in every generated model and tested
 // there against the reference implementation (tests/model_gen/test_generated_models.cpp).
@@ -75,6 +76,14 @@ constexpr std::array<bool, nbodies> makeCoordinateUnique() noexcept {
   return out;
 }
 constexpr std::array<bool, nbodies> coordinateUnique = makeCoordinateUnique();
+
+/// nv · vIndex[b]: where the column of body b's coordinate starts in a column-major nv × nv matrix.
+constexpr std::array<int, nbodies> makeColumnStart() noexcept {
+  std::array<int, nbodies> out{};
+  for (int b = 1; b < nbodies; ++b) out[ix(b)] = nv * vIndex[b];
+  return out;
+}
+constexpr std::array<int, nbodies> columnStart = makeColumnStart();
 
 /// True for a body whose chain (the body and its ancestors with a joint) holds no coordinate twice:
 /// its Jacobian columns are then each written by one joint.
@@ -299,25 +308,47 @@ inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
     const double* E = d.R[ix(b)].data();
     const double r[3] = {d.p[ix(b)](0) - p0[0], d.p[ix(b)](1) - p0[1], d.p[ix(b)](2) - p0[2]};
     const double m = bodyMass[b];
-    const double* I = bodyRotationalInertia[b];
-    double Eh[3];
-    rotate(E, bodyFirstMoment[b], Eh);
-    double EI[9];  // E I, column-major
-    for (int j = 0; j < 3; ++j) rotate(E, I + 3 * j, EI + 3 * j);
     double* c = C[b];
-    const double h[3] = {Eh[0] + m * r[0], Eh[1] + m * r[1], Eh[2] + m * r[2]};
-    const double t[3] = {r[0] * (Eh[0] + h[0]), r[1] * (Eh[1] + h[1]), r[2] * (Eh[2] + h[2])};
-    auto eie = [&](int i, int j) { return EI[i] * E[j] + EI[i + 3] * E[j + 3] + EI[i + 6] * E[j + 6]; };
     c[0] = m;
-    c[1] = h[0];
-    c[2] = h[1];
-    c[3] = h[2];
-    c[4] = eie(0, 0) + t[1] + t[2];
-    c[5] = eie(1, 0) - (Eh[1] * r[0] + r[1] * h[0]);
-    c[6] = eie(2, 0) - (Eh[2] * r[0] + r[2] * h[0]);
-    c[7] = eie(1, 1) + t[0] + t[2];
-    c[8] = eie(2, 1) - (Eh[2] * r[1] + r[2] * h[1]);
-    c[9] = eie(2, 2) + t[0] + t[1];
+    if (comDiagonal[b]) {
+      // About the centre of mass rc = r + E com: I_O = E D Eᵀ + m (|rc|² 1 − rc rcᵀ), h = m rc.
+      const double* D = bodyComInertia[b];
+      double Ec[3];
+      rotate(E, bodyCom[b], Ec);
+      const double rc[3] = {r[0] + Ec[0], r[1] + Ec[1], r[2] + Ec[2]};
+      const double h[3] = {m * rc[0], m * rc[1], m * rc[2]};
+      const double t[3] = {rc[0] * h[0], rc[1] * h[1], rc[2] * h[2]};
+      const double ED[9] = {E[0] * D[0], E[1] * D[0], E[2] * D[0], E[3] * D[1], E[4] * D[1],
+                            E[5] * D[1], E[6] * D[2], E[7] * D[2], E[8] * D[2]};
+      auto ede = [&](int i, int j) { return ED[i] * E[j] + ED[i + 3] * E[j + 3] + ED[i + 6] * E[j + 6]; };
+      c[1] = h[0];
+      c[2] = h[1];
+      c[3] = h[2];
+      c[4] = ede(0, 0) + (t[1] + t[2]);
+      c[5] = ede(1, 0) - h[1] * rc[0];
+      c[6] = ede(2, 0) - h[2] * rc[0];
+      c[7] = ede(1, 1) + (t[0] + t[2]);
+      c[8] = ede(2, 1) - h[2] * rc[1];
+      c[9] = ede(2, 2) + (t[0] + t[1]);
+    } else {
+      const double* I = bodyRotationalInertia[b];
+      double Eh[3];
+      rotate(E, bodyFirstMoment[b], Eh);
+      double EI[9];  // E I, column-major
+      for (int j = 0; j < 3; ++j) rotate(E, I + 3 * j, EI + 3 * j);
+      const double h[3] = {Eh[0] + m * r[0], Eh[1] + m * r[1], Eh[2] + m * r[2]};
+      const double t[3] = {r[0] * (Eh[0] + h[0]), r[1] * (Eh[1] + h[1]), r[2] * (Eh[2] + h[2])};
+      auto eie = [&](int i, int j) { return EI[i] * E[j] + EI[i + 3] * E[j + 3] + EI[i + 6] * E[j + 6]; };
+      c[1] = h[0];
+      c[2] = h[1];
+      c[3] = h[2];
+      c[4] = eie(0, 0) + t[1] + t[2];
+      c[5] = eie(1, 0) - (Eh[1] * r[0] + r[1] * h[0]);
+      c[6] = eie(2, 0) - (Eh[2] * r[0] + r[2] * h[0]);
+      c[7] = eie(1, 1) + t[0] + t[2];
+      c[8] = eie(2, 1) - (Eh[2] * r[1] + r[2] * h[1]);
+      c[9] = eie(2, 2) + t[0] + t[1];
+    }
     if (b == 0) continue;
     double a[3];
     scaledJointAxisWorld(d, b, a);
@@ -348,7 +379,7 @@ inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
     double* cp = C[parentOf[b]];
     for (int k = 0; k < 10; ++k) cp[k] += c[k];
     const int vi = vIndex[b];
-    double* col = Mp + nv * vi;
+    double* col = Mp + columnStart[ix(b)];
     const bool unique = coordinateUnique[ix(b)];
     const double diag = s[0] * F[0] + s[1] * F[1] + s[2] * F[2] + s[3] * F[3] + s[4] * F[4] + s[5] * F[5];
     if (unique)
@@ -360,12 +391,13 @@ inline void crbaAtRoot(Data& d, MassMatrix& M) noexcept {
       const double x =
           sa[0] * F[0] + sa[1] * F[1] + sa[2] * F[2] + sa[3] * F[3] + sa[4] * F[4] + sa[5] * F[5];
       const int va = vIndex[a];
+      double* row = Mp + vi + columnStart[ix(a)];  // M(vi, va)
       if (unique && coordinateUnique[ix(a)]) {
         col[va] = x;
-        Mp[vi + nv * va] = x;
+        *row = x;
       } else {
         col[va] += x;
-        Mp[vi + nv * va] += x;
+        *row += x;
       }
     }
     if (floating_base) {

@@ -548,6 +548,36 @@ void Emitter::emitChainTables(std::ostream& o) const {
     o << "}";
   }
   o << "};\n";
+  // The inertia about the centre of mass c = h / m, I_c = I − m (|c|² 1 − c cᵀ), when it is
+  // diagonal in body axes (URDF inertias usually are): crbaAtRoot then moves it to the root's origin
+  // with fewer products. comDiagonal is false for a massless body or a non-diagonal I_c.
+  std::vector<Vector3d> com(idx(nb_), Vector3d::Zero()), comI(idx(nb_), Vector3d::Zero());
+  std::vector<bool> diagonal(idx(nb_), false);
+  for (int b = 0; b < nb_; ++b) {
+    const BodyInertia& in = t_.bodies[idx(b)].inertia;
+    if (!(in.mass > 0.0)) continue;
+    const Vector3d c = in.h / in.mass;
+    const Matrix3d Ic = in.I - in.mass * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose());
+    bool diag = true;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (i != j && snap(Ic(i, j)) != 0.0) diag = false;
+    if (!diag) continue;
+    diagonal[idx(b)] = true;
+    com[idx(b)] = c;
+    comI[idx(b)] = Ic.diagonal();
+  }
+  list("bool", "comDiagonal",
+       [&](int b) { return diagonal[idx(b)] ? std::string("true") : std::string("false"); });
+  auto vectors = [&](const char* n, const std::vector<Vector3d>& x) {
+    o << "constexpr double " << n << "[" << nb_ << "][3] = {";
+    for (int b = 0; b < nb_; ++b)
+      o << (b ? ", " : "") << "{" << literal(x[idx(b)](0)) << ", " << literal(x[idx(b)](1)) << ", "
+        << literal(x[idx(b)](2)) << "}";
+    o << "};\n";
+  };
+  vectors("bodyCom", com);
+  vectors("bodyComInertia", comI);
   o << "constexpr double bodyFirstMoment[" << nb_ << "][3] = {";
   for (int b = 0; b < nb_; ++b) {
     const Vector3d& h = t_.bodies[idx(b)].inertia.h;
