@@ -220,7 +220,9 @@ inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) no
   else
     chainColumns<false>(d, b, pt, Jp);
   if (floating_base) {
-    const double* R0 = d.R[0].data();
+    const double* R = d.R[0].data();
+    // Copied first: the stores to J cannot then force R0 to be read again.
+    const double R0[9] = {R[0], R[1], R[2], R[3], R[4], R[5], R[6], R[7], R[8]};
     double dp[3];
     for (int i = 0; i < 3; ++i) dp[i] = pt[i] - d.p[0][i];
     for (int k = 0; k < 3; ++k) {
