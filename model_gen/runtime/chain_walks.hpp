@@ -1,9 +1,9 @@
 // Algorithms of every generated model that walk its tables (S6, vIndex, gain, parentOf,
-// subtreeMass, bodyMass, bodyFirstMoment, bodyRotationalInertia, comDiagonal, bodyCom, bodyComInertia, frame_R,
-// frame_p) and its Data:
-// mrqp-gen copies the text after the marker line into the anonymous namespace of each generated
-// .cpp, after the model's tables and kernels.hpp. Compiled in every generated model and tested
-// there against the reference implementation (tests/model_gen/test_generated_models.cpp).
+// subtreeMass, bodyMass, bodyFirstMoment, bodyRotationalInertia, comDiagonal, bodyCom,
+// bodyComInertia, frame_R, frame_p) and its Data: mrqp-gen copies the text after the marker line
+// into the anonymous namespace of each generated .cpp, after the model's tables and kernels.hpp.
+// Compiled in every generated model and tested there against the reference implementation
+// (tests/model_gen/test_generated_models.cpp).
 #pragma once
 
 // ---- mrqp-gen: the text below is copied into every generated model ----
@@ -124,6 +124,7 @@ constexpr int collectZeroRuns(const bool (&flags)[N], int n, ZeroRun* out) noexc
   return runs;
 }
 
+/// Sets the entries of the runs [begin, end) of x to zero.
 inline void zeroRuns(double* x, const ZeroRun* begin, const ZeroRun* end) noexcept {
   for (const ZeroRun* z = begin; z != end; ++z)
     for (int k = 0; k < z->count; ++k) x[z->start + k] = 0.0;
@@ -290,8 +291,10 @@ constexpr std::array<ZeroRun, ix(nMassZeroRuns)> makeMassZeroRuns() noexcept {
 constexpr std::array<ZeroRun, ix(nMassZeroRuns)> massZeroRuns = makeMassZeroRuns();
 
 /// Composite-rigid-body algorithm in one frame, O: axes aligned with the world at the root's origin.
-/// Each body's inertia is moved to O once (m, h, I about O: I_O = E I Eᵀ + Σ_{k≠i} r_k (Eh_k + h_k)
-/// on the diagonal, −(Eh_i r_j + r_i h_j) off it, h = E h_b + m r); a body's composite is then the
+/// Each body's inertia is moved to O once: about its centre of mass when the inertia there is
+/// diagonal in body axes (comDiagonal: I_O = E D Eᵀ + m (|r_c|² 1 − r_c r_cᵀ), h = m r_c,
+/// r_c = r + E c), else from the body origin (I_O = E I Eᵀ + Σ_{k≠i} r_k (Eh_k + h_k) on the
+/// diagonal, −(Eh_i r_j + r_i h_j) off it, h = E h_b + m r); a body's composite is then the
 /// plain sum of its subtree's, with no transform between a body and its parent; a joint is the
 /// Plücker vector s_b = g_b (w, r_b × w + u) at O (r_b = p_b − p_0; (w, u) = R_b S_b; g_b the mimic
 /// gain), F_b = I^C_b s_b and M(v_c, v_b) = s_cᵀ F_b for b and each ancestor c with a joint. The
