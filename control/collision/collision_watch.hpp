@@ -12,7 +12,7 @@
 #include <limits>
 #include <vector>
 
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 #include "problem/multi_robot_problem.hpp"
 
 namespace mrqp::collision {

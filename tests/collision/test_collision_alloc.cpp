@@ -7,7 +7,7 @@
 #include <string>
 
 #include "counting_allocator.hpp"
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 

@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"

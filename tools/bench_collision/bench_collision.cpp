@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "collision/distance.hpp"
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"

@@ -24,7 +24,7 @@
 #include "scene/yaml_reader.hpp"
 
 #ifdef MRQP_WITH_COLLISION
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 #include "scene/constraint_kinds/collision_geometry.hpp"
 #endif
 

@@ -1,6 +1,6 @@
 // Collision avoidance by velocity dampers between convex shapes (eq. 21, 24); see
 // collision_constraint.hpp.
-#include "problem/constraints/collision_constraint.hpp"
+#include "collision/collision_constraint.hpp"
 
 #include <algorithm>
 #include <cmath>
