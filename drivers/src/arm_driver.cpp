@@ -2,6 +2,7 @@
 // arm_driver.hpp.
 #include "mrqp/drivers/arm_driver.hpp"
 
+#include "cia402_states.hpp"
 #include "driver_util.hpp"
 #include "mrqp/firmware_if/arm_pdo.h"
 #include "mrqp/firmware_if/canopen_ids.h"
@@ -10,25 +11,8 @@
 
 namespace mrqp::drivers {
 
-namespace {
-
-bool is_fault_state(mrqp_fw_cia402_state s) noexcept {
-  return s == MRQP_FW_CIA402_FAULT || s == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE ||
-         s == MRQP_FW_CIA402_UNKNOWN;
-}
-
-bool reached(mrqp_fw_cia402_state target, mrqp_fw_cia402_state s) noexcept {
-  switch (target) {
-    case MRQP_FW_CIA402_SWITCH_ON_DISABLED:
-      return s == MRQP_FW_CIA402_SWITCH_ON_DISABLED || s == MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
-    case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
-      return s == MRQP_FW_CIA402_QUICK_STOP_ACTIVE || s == MRQP_FW_CIA402_SWITCH_ON_DISABLED;
-    default:
-      return s == target;
-  }
-}
-
-}  // namespace
+using detail::cia402_fault_state;
+using detail::cia402_state_reached;
 
 const char* arm_phase_str(ArmPhase phase) noexcept {
   switch (phase) {
@@ -152,7 +136,7 @@ bool ArmDriver::all_enabled() const noexcept {
 
 bool ArmDriver::all_disabled() const noexcept {
   for (const Drive& d : drives_) {
-    if (!d.state.valid || !reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
+    if (!d.state.valid || !cia402_state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
       return false;
     }
   }
@@ -325,9 +309,9 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
       }
       if (d.state.valid) {
         const mrqp_fw_cia402_state s = d.state.state;
-        if (is_fault_state(s)) {
+        if (cia402_fault_state(s)) {
           flags |= fault::kDeviceFault;
-          if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !is_fault_state(d.prev_state)) {
+          if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !cia402_fault_state(d.prev_state)) {
             // Fell into Fault while enabled: stay there until the caller asks
             // again.
             d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
@@ -344,7 +328,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         }
         d.prev_state = s;
       }
-      if (!(d.state.valid && reached(d.target, d.state.state)) &&
+      if (!(d.state.valid && cia402_state_reached(d.target, d.state.state)) &&
           now - d.target_since > config_.enable_timeout) {
         flags |= fault::kTimeout;
       }
@@ -475,7 +459,7 @@ std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
       // A drive in Fault is only reset when the caller asks for Operation
       // enabled again.
       const std::uint16_t cw =
-          is_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
+          cia402_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
               ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
               : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
       const bool enabled =

@@ -1,6 +1,7 @@
 // mrqp drivers -- arm drives, CiA 402 master: recovery of a drive that left Operational, rebooted
 // or fell into Fault, and the safe exit (stop, then NMT pre-operational / stopped). The real-time
 // part; see arm_driver.hpp and docs/drivers.md ("Bringing up a vendor's drive").
+#include "cia402_states.hpp"
 #include "driver_util.hpp"
 #include "mrqp/drivers/arm_driver.hpp"
 #include "mrqp/firmware_if/nmt.h"
@@ -9,25 +10,8 @@
 
 namespace mrqp::drivers {
 
-namespace {
-
-bool fault_state(mrqp_fw_cia402_state s) noexcept {
-  return s == MRQP_FW_CIA402_FAULT || s == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE ||
-         s == MRQP_FW_CIA402_UNKNOWN;
-}
-
-bool state_reached(mrqp_fw_cia402_state target, mrqp_fw_cia402_state s) noexcept {
-  switch (target) {
-    case MRQP_FW_CIA402_SWITCH_ON_DISABLED:
-      return s == MRQP_FW_CIA402_SWITCH_ON_DISABLED || s == MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
-    case MRQP_FW_CIA402_QUICK_STOP_ACTIVE:
-      return s == MRQP_FW_CIA402_QUICK_STOP_ACTIVE || s == MRQP_FW_CIA402_SWITCH_ON_DISABLED;
-    default:
-      return s == target;
-  }
-}
-
-}  // namespace
+using detail::cia402_fault_state;
+using detail::cia402_state_reached;
 
 bool ArmDriver::needs_recovery(std::size_t i) const noexcept {
   if (i >= drives_.size() || phase_ != ArmPhase::Running) {
@@ -41,7 +25,7 @@ bool ArmDriver::needs_recovery(std::size_t i) const noexcept {
                                 d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
                                 d.heartbeat.last() > d.nmt.commanded() + 2 * config_.cycle_period;
   const bool fell =
-      wanted_ == MRQP_FW_CIA402_OPERATION_ENABLED && d.state.valid && fault_state(d.state.state);
+      wanted_ == MRQP_FW_CIA402_OPERATION_ENABLED && d.state.valid && cia402_fault_state(d.state.state);
   return d.rebooted || left_operational || fell;
 }
 
@@ -155,7 +139,7 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
     d.target = wanted_;
     d.target_since = now;
   }
-  if (state_reached(wanted_, d.state.state)) {
+  if (cia402_state_reached(wanted_, d.state.state)) {
     d.recovery = Drive::Recovery::None;
     ++d.faults.recoveries;
   }
@@ -220,7 +204,7 @@ void ArmDriver::step_safe_exit(TimeNs now) noexcept {
     // A drive without feedback, or not operational, cannot report a stop: nothing to wait for.
     const bool talking = d.state.valid && d.state.nmt_state != MRQP_FW_NMT_STATE_PRE_OPERATIONAL &&
                          d.state.nmt_state != MRQP_FW_NMT_STATE_STOPPED;
-    if (talking && !state_reached(d.target, d.state.state)) {
+    if (talking && !cia402_state_reached(d.target, d.state.state)) {
       all = false;
     }
   }
@@ -248,7 +232,8 @@ void ArmDriver::step_safe_exit(TimeNs now) noexcept {
   exit_nmt_stage_ = true;
   for (Drive& d : drives_) {
     const bool operational = d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL;
-    const bool powered = d.state.valid && !state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state);
+    const bool powered =
+        d.state.valid && !cia402_state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state);
     if (!operational && powered) {
       const std::uint8_t zero[2] = {0, 0};
       mrqp_fw_frame f;
