@@ -6,6 +6,7 @@
 #include "mesh_format.hpp"
 #include "mesh_limits.hpp"
 #include "mesh_reader.hpp"
+#include "temp_dir.hpp"
 #include "xml_document.hpp"
 
 #include <chrono>
@@ -23,26 +24,7 @@ using mrqp::gen::readMeshVertices;
 
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (;;) {
-      path_ = fs::temp_directory_path() / ("mrqp_test_hostile_mesh_" + std::to_string(rd()));
-      if (fs::create_directories(path_)) break;
-    }
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using mrqp::testing::TempDir;
 
 std::string write(const TempDir& dir, const std::string& name, const std::string& text) {
   const std::string path = dir.file(name);

@@ -2,6 +2,7 @@
 
 #include "convex_hull.hpp"
 #include "mesh_reader.hpp"
+#include "temp_dir.hpp"
 
 #include <algorithm>
 #include <array>
@@ -31,27 +32,7 @@ namespace {
 const std::string kData = std::string(MRQP_TEST_DATA_DIR) + "/meshes/";
 
 // A fresh directory under the system's temporary directory, removed at the end.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (;;) {
-      path_ = fs::temp_directory_path() / ("mrqp_test_mesh_" + std::to_string(rd()));
-      if (fs::create_directories(path_)) break;
-    }
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using mrqp::testing::TempDir;
 
 void writeFile(const std::string& path, const std::string& bytes) {
   fs::create_directories(fs::path(path).parent_path());

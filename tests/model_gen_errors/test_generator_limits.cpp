@@ -14,6 +14,7 @@
 #include "code_emitter.hpp"
 #include "generator_limits.hpp"
 #include "parent_walk.hpp"
+#include "temp_dir.hpp"
 #include "urdf_loader.hpp"
 
 namespace fs = std::filesystem;
@@ -69,26 +70,7 @@ std::string oneJoint(const std::string& joint_extra, const std::string& link_ext
 
 const std::string kLimit = "<limit lower='-1' upper='1' effort='1' velocity='1'/>";
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (;;) {
-      path_ = fs::temp_directory_path() / ("mrqp_test_limits_" + std::to_string(rd()));
-      if (fs::create_directories(path_)) break;
-    }
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using mrqp::testing::TempDir;
 
 }  // namespace
 

@@ -19,6 +19,7 @@
 #include "cpp_text.hpp"
 #include "generator_limits.hpp"
 #include "name_rule.hpp"
+#include "temp_dir.hpp"
 #include "urdf_loader.hpp"
 
 namespace fs = std::filesystem;
@@ -71,26 +72,7 @@ bool printableAscii(const std::string& s) {
   return true;
 }
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (;;) {
-      path_ = fs::temp_directory_path() / ("mrqp_test_hostile_" + std::to_string(rd()));
-      if (fs::create_directories(path_)) break;
-    }
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using mrqp::testing::TempDir;
 
 void writeText(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
