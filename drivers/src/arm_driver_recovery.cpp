@@ -118,11 +118,19 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
   }
   // Starting: operational again (heard in its heartbeat, or its PDOs when it sends none), then the
   // CiA 402 part towards what the caller last asked for -- unless the safe state is in force. A
-  // heartbeat sent after the start that is not operational: the start did not hold (the drive fell
-  // again): this recovery is over, the drive needs another one.
+  // heartbeat heard two cycles after the start that is not operational: the start did not hold
+  // (the drive fell again) or that heartbeat left the drive before the start reached it (a late
+  // bus): the start is sent again, within this recovery's boot timeout; in the safe state the
+  // recovery ends there instead.
   if (d.heartbeat.monitoring() && d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
       d.heartbeat.last() > d.nmt.commanded() + 2 * config_.cycle_period && !d.has_pending) {
-    d.recovery = Drive::Recovery::None;
+    if (safe_state_) {
+      d.recovery = Drive::Recovery::None;
+      return;
+    }
+    mrqp_fw_frame f;
+    d.nmt.start_remote(now, &f);
+    set_pending(d, f);
     return;
   }
   const bool operational = d.heartbeat.monitoring() ? d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL &&
