@@ -53,6 +53,20 @@ void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept {
   d.has_pending = true;
 }
 
+bool ArmDriver::failed_sdo_step(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept {
+  if (step != SdoWriteSequence::Step::Failed && step != SdoWriteSequence::Step::FailedSend) {
+    return false;
+  }
+  if (step == SdoWriteSequence::Step::FailedSend) {
+    set_pending(d, out);
+  }
+  d.faults.sdo_abort_code = d.sdo.abort_code();
+  d.faults.sdo_index = d.sdo.current().index;
+  d.faults.sdo_subindex = d.sdo.current().subindex;
+  fail_boot(d, fault::kTimeout | fault::kBootFailed);
+  return true;
+}
+
 void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept {
   d.events |= flags;
   if (d.recovery != Drive::Recovery::None) {
@@ -243,15 +257,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
     for (Drive& d : drives_) {
       mrqp_fw_frame out;
       const SdoWriteSequence::Step step = d.sdo.process(now, false, &out);
-      if (step == SdoWriteSequence::Step::Failed || step == SdoWriteSequence::Step::FailedSend) {
-        if (step == SdoWriteSequence::Step::FailedSend) {
-          set_pending(d, out);
-        }
-        d.faults.sdo_abort_code = d.sdo.abort_code();
-        d.faults.sdo_index = d.sdo.current().index;
-        d.faults.sdo_subindex = d.sdo.current().subindex;
-        fail_boot(d, fault::kTimeout | fault::kBootFailed);
-      }
+      failed_sdo_step(d, step, out);
       d.faults.tolerated_aborts = d.sdo.tolerated();
       all = all && d.sdo.done();
     }

@@ -97,14 +97,7 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
   if (d.recovery == Drive::Recovery::Configuring) {
     mrqp_fw_frame out;
     const SdoWriteSequence::Step step = d.sdo.process(now, false, &out);
-    if (step == SdoWriteSequence::Step::Failed || step == SdoWriteSequence::Step::FailedSend) {
-      if (step == SdoWriteSequence::Step::FailedSend) {
-        set_pending(d, out);
-      }
-      d.faults.sdo_abort_code = d.sdo.abort_code();
-      d.faults.sdo_index = d.sdo.current().index;
-      d.faults.sdo_subindex = d.sdo.current().subindex;
-      fail_boot(d, fault::kTimeout | fault::kBootFailed);
+    if (failed_sdo_step(d, step, out)) {
       return;
     }
     if (d.sdo.done() && !d.has_pending) {

@@ -297,6 +297,9 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   bool send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept;
   void set_pending(Drive& d, const mrqp_fw_frame& f) noexcept;
   void fail_boot(Drive& d, std::uint32_t flags) noexcept;
+  /// After one step of a drive's SDO write sequence (boot or recovery): a failed step keeps the
+  /// frame it could not send, records the abort and its object, fails the boot; true then.
+  bool failed_sdo_step(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept;
   void set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept;
   Claim on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept;
   void decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept;
