@@ -93,7 +93,7 @@ void report(benchmark::State& state, int frames) {
 }
 
 /// Adds the "max" aggregate (slowest repetition) to a benchmark.
-benchmark::internal::Benchmark* with_max(benchmark::internal::Benchmark* b) {
+benchmark::internal::Benchmark* withMax(benchmark::internal::Benchmark* b) {
   return b->ComputeStatistics("max", [](const std::vector<double>& v) {
     return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
   });
@@ -123,8 +123,8 @@ void run(benchmark::State& state, int frames, Fn&& fn) {
   report(state, frames);
 }
 
-std::uint32_t pack_err(mrqp_fw_pack_flags flags) { return flags & MRQP_FW_PACK_ERR_MASK; }
-std::uint32_t unpack_err(mrqp_fw_err err) { return static_cast<std::uint32_t>(err); }
+std::uint32_t packErr(mrqp_fw_pack_flags flags) { return flags & MRQP_FW_PACK_ERR_MASK; }
+std::uint32_t unpackErr(mrqp_fw_err err) { return static_cast<std::uint32_t>(err); }
 
 /// One encode and one decode benchmark of a message: inputs[i] -> frames[i][0..F) -> decoded.
 /// `make(rng)` draws an input, `pack(input, frames)` encodes it, `unpack(frames, input)` decodes
@@ -149,30 +149,30 @@ struct Message {
   void encode(benchmark::State& state) {
     std::array<mrqp_fw_frame, F> out{};
     run(state, static_cast<int>(F), [&](std::size_t i) {
-      const std::uint32_t e = pack_err(pack(in[i], out.data()));
+      const std::uint32_t e = packErr(pack(in[i], out.data()));
       benchmark::DoNotOptimize(out);
       return e;
     });
   }
   void decode(benchmark::State& state) {
     run(state, static_cast<int>(F),
-        [&](std::size_t i) { return unpack_err(unpack(frames[i].data(), in[i])); });
+        [&](std::size_t i) { return unpackErr(unpack(frames[i].data(), in[i])); });
   }
 };
 
 /// Registers BM_encode/<name> and (with decode) BM_decode/<name> for one message kind.
 template <class In, std::size_t F, class Make, class Pack, class Unpack>
-void add_message(const char* name, std::uint32_t seed, Make make, Pack pack, Unpack unpack,
-                 bool decode = true, bool encode = true) {
+void addMessage(const char* name, std::uint32_t seed, Make make, Pack pack, Unpack unpack, bool decode = true,
+                bool encode = true) {
   using M = Message<In, F, Make, Pack, Unpack>;
   auto msg = std::make_shared<M>(seed, make, pack, unpack);
   if (encode) {
-    with_max(benchmark::RegisterBenchmark((std::string("BM_encode/") + name).c_str(),
-                                          [msg](benchmark::State& s) { msg->encode(s); }));
+    withMax(benchmark::RegisterBenchmark((std::string("BM_encode/") + name).c_str(),
+                                         [msg](benchmark::State& s) { msg->encode(s); }));
   }
   if (decode) {
-    with_max(benchmark::RegisterBenchmark((std::string("BM_decode/") + name).c_str(),
-                                          [msg](benchmark::State& s) { msg->decode(s); }));
+    withMax(benchmark::RegisterBenchmark((std::string("BM_decode/") + name).c_str(),
+                                         [msg](benchmark::State& s) { msg->decode(s); }));
   }
 }
 
@@ -184,7 +184,7 @@ const mrqp_fw_hand_scale kHandScale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
 const mrqp_fw_ft_scale kFtClassic = MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
 const mrqp_fw_ft_scale kFtFd = MRQP_FW_FT_SCALE_FD_DEFAULT_INIT;
 
-unsigned node_of(std::size_t i) { return 1u + static_cast<unsigned>((i * 37u) % 127u); }
+unsigned nodeOf(std::size_t i) { return 1u + static_cast<unsigned>((i * 37u) % 127u); }
 
 // CANopen NMT / SYNC / heartbeat / EMCY.
 struct NmtIn {
@@ -243,9 +243,9 @@ struct FtIn {
   unsigned tare;
 };
 
-SdoIn make_sdo(Rng& r, std::size_t i) {
+SdoIn makeSdo(Rng& r, std::size_t i) {
   SdoIn s{};
-  s.node = node_of(i);
+  s.node = nodeOf(i);
   s.index = static_cast<std::uint16_t>(0x6000u + r.uint(0, 0xFFF));
   s.sub = static_cast<std::uint8_t>(r.uint(0, 8));
   s.value = static_cast<std::uint32_t>(r.uint(0, 0xFFFFFFFFu));
@@ -262,13 +262,13 @@ SdoIn make_sdo(Rng& r, std::size_t i) {
 
 mrqp_fw_sdo_msg g_sdo_msg;  // decode output, outside the loop's registers
 
-std::uint32_t sdo_decode(const mrqp_fw_frame* f) {
+std::uint32_t sdoDecode(const mrqp_fw_frame* f) {
   const mrqp_fw_err e = mrqp_fw_sdo_unpack(f, &g_sdo_msg);
   benchmark::DoNotOptimize(g_sdo_msg);
-  return unpack_err(e);
+  return unpackErr(e);
 }
 
-ArmPdoIn make_arm(Rng& r, std::size_t i) {
+ArmPdoIn makeArm(Rng& r, std::size_t i) {
   ArmPdoIn a{};
   a.node = 1u + static_cast<unsigned>(i % 7u);
   static constexpr std::uint16_t kCw[4] = {0x0006, 0x0007, 0x000F, 0x010F};
@@ -282,7 +282,7 @@ ArmPdoIn make_arm(Rng& r, std::size_t i) {
   return a;
 }
 
-MitIn make_mit(Rng& r, std::size_t i) {
+MitIn makeMit(Rng& r, std::size_t i) {
   MitIn m{};
   m.id = 1u + static_cast<unsigned>(i % 20u);
   m.cmd = {r.realf(-3.0f, 3.0f), r.realf(-20.0f, 20.0f), r.realf(0.0f, 200.0f), r.realf(0.0f, 3.0f),
@@ -295,7 +295,7 @@ MitIn make_mit(Rng& r, std::size_t i) {
   return m;
 }
 
-HandIn make_hand(Rng& r, std::size_t i) {
+HandIn makeHand(Rng& r, std::size_t i) {
   HandIn h{};
   h.board = static_cast<unsigned>(i % 16u);
   for (std::size_t k = 0; k < 2; ++k) {
@@ -320,7 +320,7 @@ HandIn make_hand(Rng& r, std::size_t i) {
   return h;
 }
 
-FtIn make_ft(Rng& r, std::size_t i) {
+FtIn makeFt(Rng& r, std::size_t i) {
   FtIn t{};
   t.node = 0x30u + static_cast<unsigned>(i & 1u);
   for (std::size_t k = 0; k < 3; ++k) {
@@ -335,15 +335,15 @@ FtIn make_ft(Rng& r, std::size_t i) {
   return t;
 }
 
-void register_messages() {
+void registerMessages() {
   // ---- CANopen: NMT, SYNC, heartbeat, EMCY ----
-  add_message<NmtIn, 1>(
+  addMessage<NmtIn, 1>(
       "nmt", 1,
       [](Rng& r, std::size_t i) {
         static constexpr mrqp_fw_nmt_cmd kCmd[5] = {MRQP_FW_NMT_START, MRQP_FW_NMT_STOP,
                                                     MRQP_FW_NMT_ENTER_PREOP, MRQP_FW_NMT_RESET_NODE,
                                                     MRQP_FW_NMT_RESET_COMM};
-        return NmtIn{kCmd[r.uint(0, 4)], (i % 8u) == 0u ? 0u : node_of(i)};
+        return NmtIn{kCmd[r.uint(0, 4)], (i % 8u) == 0u ? 0u : nodeOf(i)};
       },
       [](const NmtIn& in, mrqp_fw_frame* f) { return mrqp_fw_nmt_pack(in.cmd, in.node, f); },
       [](const mrqp_fw_frame* f, const NmtIn&) {
@@ -354,7 +354,7 @@ void register_messages() {
         benchmark::DoNotOptimize(node);
         return e;
       });
-  add_message<unsigned, 1>(
+  addMessage<unsigned, 1>(
       "sync", 2,
       [](Rng& r, std::size_t i) { return (i % 8u) == 0u ? 0u : r.uint(1, MRQP_FW_SYNC_COUNTER_MAX); },
       [](const unsigned& counter, mrqp_fw_frame* f) { return mrqp_fw_sync_pack(counter, f); },
@@ -364,13 +364,13 @@ void register_messages() {
         benchmark::DoNotOptimize(counter);
         return e;
       });
-  add_message<HeartbeatIn, 1>(
+  addMessage<HeartbeatIn, 1>(
       "heartbeat", 3,
       [](Rng& r, std::size_t i) {
         static constexpr mrqp_fw_nmt_state kState[4] = {MRQP_FW_NMT_STATE_BOOTUP, MRQP_FW_NMT_STATE_STOPPED,
                                                         MRQP_FW_NMT_STATE_OPERATIONAL,
                                                         MRQP_FW_NMT_STATE_PRE_OPERATIONAL};
-        return HeartbeatIn{node_of(i), kState[r.uint(0, 3)]};
+        return HeartbeatIn{nodeOf(i), kState[r.uint(0, 3)]};
       },
       [](const HeartbeatIn& in, mrqp_fw_frame* f) { return mrqp_fw_heartbeat_pack(in.node, in.state, f); },
       [](const mrqp_fw_frame* f, const HeartbeatIn&) {
@@ -381,7 +381,7 @@ void register_messages() {
         benchmark::DoNotOptimize(state);
         return e;
       });
-  add_message<EmcyIn, 1>(
+  addMessage<EmcyIn, 1>(
       "emcy", 4,
       [](Rng& r, std::size_t i) {
         static constexpr std::uint16_t kCode[6] = {MRQP_FW_EMCY_NO_ERROR,
@@ -391,7 +391,7 @@ void register_messages() {
                                                    MRQP_FW_EMCY_FOLLOWING_ERROR,
                                                    MRQP_FW_EMCY_RPDO_TIMEOUT};
         EmcyIn e{};
-        e.node = node_of(i);
+        e.node = nodeOf(i);
         e.emcy.error_code = kCode[i % 6];
         e.emcy.error_register = static_cast<std::uint8_t>(r.byte() & ~MRQP_FW_ERRREG_RESERVED);
         for (auto& b : e.emcy.manufacturer) {
@@ -411,61 +411,61 @@ void register_messages() {
 
   // ---- CANopen SDO: every frame kind of the contract (decode: mrqp_fw_sdo_unpack) ----
   const auto sdo_unpack = [](const mrqp_fw_frame* f, const SdoIn&) {
-    return static_cast<mrqp_fw_err>(sdo_decode(f));
+    return static_cast<mrqp_fw_err>(sdoDecode(f));
   };
-  add_message<SdoIn, 1>(
-      "sdo_download_expedited", 10, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_download_expedited", 10, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_download_u32(s.node, s.index, s.sub, s.value, s.n, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_download_resp", 11, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_download_resp", 11, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_download_resp(s.node, s.index, s.sub, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_upload_req", 12, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_upload_req", 12, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) { return mrqp_fw_sdo_pack_upload_req(s.node, s.index, s.sub, f); },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_upload_expedited", 13, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_upload_expedited", 13, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_upload_resp(s.node, s.index, s.sub, s.data.data(), 1u + s.value % 4u, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_download_init_segmented", 14, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_download_init_segmented", 14, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_download_init_segmented(s.node, s.index, s.sub, 5u + s.value % 200u, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_upload_resp_segmented", 15, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_upload_resp_segmented", 15, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_upload_resp_segmented(s.node, s.index, s.sub, 5u + s.value % 200u, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_segment", 16, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_segment", 16, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_segment(s.node, s.from_server, s.toggle, s.data.data(), s.value % 8u, s.last,
                                         f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_download_seg_resp", 17, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_download_seg_resp", 17, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         return mrqp_fw_sdo_pack_download_seg_resp(s.node, s.toggle, f);
       },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_upload_seg_req", 18, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_upload_seg_req", 18, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) { return mrqp_fw_sdo_pack_upload_seg_req(s.node, s.toggle, f); },
       sdo_unpack);
-  add_message<SdoIn, 1>(
-      "sdo_abort", 19, make_sdo,
+  addMessage<SdoIn, 1>(
+      "sdo_abort", 19, makeSdo,
       [](const SdoIn& s, mrqp_fw_frame* f) {
         static constexpr std::uint32_t kAbort[4] = {MRQP_FW_SDO_ABORT_TIMEOUT, MRQP_FW_SDO_ABORT_NO_OBJECT,
                                                     MRQP_FW_SDO_ABORT_TYPE_LENGTH,
@@ -475,8 +475,8 @@ void register_messages() {
       sdo_unpack);
 
   // ---- CiA 402 PDOs of the arm drives ----
-  add_message<ArmPdoIn, 1>(
-      "rpdo1", 20, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "rpdo1", 20, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_rpdo1(a.node, &a.rpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_rpdo1 p;
@@ -485,15 +485,15 @@ void register_messages() {
         return e;
       });
   // The master's path: target position (rad) and torque (N m) scaled to increments / per mille.
-  add_message<ArmPdoIn, 1>(
-      "rpdo1_si", 21, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "rpdo1_si", 21, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) {
         return mrqp_fw_arm_pack_rpdo1_si(&kArmScale, a.node, a.rpdo1.controlword, a.position_rad, a.torque_nm,
                                          f);
       },
       [](const mrqp_fw_frame*, const ArmPdoIn&) { return MRQP_FW_OK; }, /*decode=*/false);
-  add_message<ArmPdoIn, 1>(
-      "tpdo1", 22, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "tpdo1", 22, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo1 p;
@@ -502,8 +502,8 @@ void register_messages() {
         return e;
       });
   // The host's path: statusword, position (rad) and torque (N m).
-  add_message<ArmPdoIn, 1>(
-      "tpdo1_si", 23, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "tpdo1_si", 23, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo1(a.node, &a.tpdo1, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo1 p;
@@ -518,8 +518,8 @@ void register_messages() {
         return e;
       },
       /*decode=*/true, /*encode=*/false);
-  add_message<ArmPdoIn, 1>(
-      "tpdo2", 24, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "tpdo2", 24, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo2 p;
@@ -527,8 +527,8 @@ void register_messages() {
         benchmark::DoNotOptimize(p);
         return e;
       });
-  add_message<ArmPdoIn, 1>(
-      "tpdo2_si", 25, make_arm,
+  addMessage<ArmPdoIn, 1>(
+      "tpdo2_si", 25, makeArm,
       [](const ArmPdoIn& a, mrqp_fw_frame* f) { return mrqp_fw_arm_pack_tpdo2(a.node, &a.tpdo2, f); },
       [](const mrqp_fw_frame* f, const ArmPdoIn& a) {
         mrqp_fw_arm_tpdo2 p;
@@ -543,8 +543,8 @@ void register_messages() {
       /*decode=*/true, /*encode=*/false);
 
   // ---- hand: MIT-mode frames ----
-  add_message<MitIn, 1>(
-      "mit_command", 30, make_mit,
+  addMessage<MitIn, 1>(
+      "mit_command", 30, makeMit,
       [](const MitIn& m, mrqp_fw_frame* f) { return mrqp_fw_mit_pack_cmd(&kMitRanges, m.id, &m.cmd, f); },
       [](const mrqp_fw_frame* f, const MitIn&) {
         std::uint8_t id;
@@ -554,8 +554,8 @@ void register_messages() {
         benchmark::DoNotOptimize(c);
         return e;
       });
-  add_message<MitIn, 1>(
-      "mit_special", 31, make_mit,
+  addMessage<MitIn, 1>(
+      "mit_special", 31, makeMit,
       [](const MitIn& m, mrqp_fw_frame* f) { return mrqp_fw_mit_pack_special(m.id, m.special, f); },
       [](const mrqp_fw_frame* f, const MitIn&) {
         const mrqp_fw_mit_kind k = mrqp_fw_mit_classify(f);
@@ -563,8 +563,8 @@ void register_messages() {
         return k == MRQP_FW_MIT_KIND_INVALID || k == MRQP_FW_MIT_KIND_COMMAND ? MRQP_FW_ERR_FORMAT
                                                                               : MRQP_FW_OK;
       });
-  add_message<MitIn, 1>(
-      "mit_reply", 32, make_mit,
+  addMessage<MitIn, 1>(
+      "mit_reply", 32, makeMit,
       [](const MitIn& m, mrqp_fw_frame* f) { return mrqp_fw_mit_pack_reply(&kMitRanges, &m.reply, f); },
       [](const mrqp_fw_frame* f, const MitIn&) {
         mrqp_fw_mit_reply r;
@@ -574,8 +574,8 @@ void register_messages() {
       });
 
   // ---- hand: CAN FD board frames, 20 joints = 2 frames (11 + 9 joints), sequence and CRC ----
-  add_message<HandIn, 2>(
-      "hand_fd_command_20j", 40, make_hand,
+  addMessage<HandIn, 2>(
+      "hand_fd_command_20j", 40, makeHand,
       [](const HandIn& h, mrqp_fw_frame* f) {
         return mrqp_fw_hand_pack_cmd(&kHandScale, h.board, &h.cmd[0], &f[0], nullptr) |
                mrqp_fw_hand_pack_cmd(&kHandScale, h.board, &h.cmd[1], &f[1], nullptr);
@@ -590,8 +590,8 @@ void register_messages() {
         }
         return e;
       });
-  add_message<HandIn, 2>(
-      "hand_fd_feedback_20j", 41, make_hand,
+  addMessage<HandIn, 2>(
+      "hand_fd_feedback_20j", 41, makeHand,
       [](const HandIn& h, mrqp_fw_frame* f) {
         return mrqp_fw_hand_pack_fb(&kHandScale, h.board, &h.fb[0], &f[0], nullptr) |
                mrqp_fw_hand_pack_fb(&kHandScale, h.board, &h.fb[1], &f[1], nullptr);
@@ -608,8 +608,8 @@ void register_messages() {
       });
 
   // ---- wrist force/torque sensor ----
-  add_message<FtIn, 2>(
-      "ft_classic_pair", 50, make_ft,
+  addMessage<FtIn, 2>(
+      "ft_classic_pair", 50, makeFt,
       [](const FtIn& t, mrqp_fw_frame* f) {
         return mrqp_fw_ft_pack_classic(&kFtClassic, t.node, &t.classic, &f[0], &f[1]);
       },
@@ -619,8 +619,8 @@ void register_messages() {
         benchmark::DoNotOptimize(s);
         return e;
       });
-  add_message<FtIn, 1>(
-      "ft_fd", 51, make_ft,
+  addMessage<FtIn, 1>(
+      "ft_fd", 51, makeFt,
       [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_fd(&kFtFd, t.node, &t.fd, f); },
       [](const mrqp_fw_frame* f, const FtIn& t) {
         mrqp_fw_ft_sample s;
@@ -628,8 +628,8 @@ void register_messages() {
         benchmark::DoNotOptimize(s);
         return e;
       });
-  add_message<FtIn, 1>(
-      "ft_tare", 52, make_ft,
+  addMessage<FtIn, 1>(
+      "ft_tare", 52, makeFt,
       [](const FtIn& t, mrqp_fw_frame* f) { return mrqp_fw_ft_pack_tare(t.node, t.tare, f); },
       [](const mrqp_fw_frame* f, const FtIn& t) {
         std::uint8_t cmd;
@@ -650,7 +650,7 @@ constexpr int kCycleFrames =
     static_cast<int>(kArmDrives + 1 + kMitMotors + 2 * kArmDrives + kMitMotors + 2 * kFtSensors);
 
 /// The host codec work of one cycle, no driver logic.
-void bm_cycle_codec(benchmark::State& state) {
+void bmCycleCodec(benchmark::State& state) {
   struct Ring {
     std::array<double, kArmDrives> position;
     std::array<mrqp_fw_mit_cmd, kMitMotors> mit;
@@ -665,18 +665,18 @@ void bm_cycle_codec(benchmark::State& state) {
   for (std::size_t i = 0; i < kCycles; ++i) {
     Ring& c = ring[i];
     for (std::size_t d = 0; d < kArmDrives; ++d) {
-      const ArmPdoIn a = make_arm(rng, d);
+      const ArmPdoIn a = makeArm(rng, d);
       c.position[d] = a.position_rad;
       (void)mrqp_fw_arm_pack_tpdo1(static_cast<unsigned>(d + 1), &a.tpdo1, &c.tpdo1[d]);
       (void)mrqp_fw_arm_pack_tpdo2(static_cast<unsigned>(d + 1), &a.tpdo2, &c.tpdo2[d]);
     }
     for (std::size_t m = 0; m < kMitMotors; ++m) {
-      const MitIn in = make_mit(rng, m);
+      const MitIn in = makeMit(rng, m);
       c.mit[m] = in.cmd;
       (void)mrqp_fw_mit_pack_reply(&kMitRanges, &in.reply, &c.reply[m]);
     }
     for (std::size_t s = 0; s < kFtSensors; ++s) {
-      const FtIn t = make_ft(rng, s);
+      const FtIn t = makeFt(rng, s);
       (void)mrqp_fw_ft_pack_classic(&kFtClassic, t.node, &t.classic, &c.ft[s][0], &c.ft[s][1]);
     }
   }
@@ -687,24 +687,23 @@ void bm_cycle_codec(benchmark::State& state) {
   for (auto _ : state) {
     const Ring& c = ring[i];
     for (std::size_t d = 0; d < kArmDrives; ++d) {
-      failed |=
-          pack_err(mrqp_fw_arm_pack_rpdo1_si(&kArmScale, static_cast<unsigned>(d + 1),
-                                             MRQP_FW_CW_ENABLE_OPERATION_CMD, c.position[d], 0.0, &out));
+      failed |= packErr(mrqp_fw_arm_pack_rpdo1_si(&kArmScale, static_cast<unsigned>(d + 1),
+                                                  MRQP_FW_CW_ENABLE_OPERATION_CMD, c.position[d], 0.0, &out));
       benchmark::DoNotOptimize(out);
     }
-    failed |= pack_err(mrqp_fw_sync_pack(sync_counter, &out));
+    failed |= packErr(mrqp_fw_sync_pack(sync_counter, &out));
     benchmark::DoNotOptimize(out);
     sync_counter = mrqp_fw_sync_counter_next(sync_counter, MRQP_FW_SYNC_COUNTER_MAX);
     for (std::size_t m = 0; m < kMitMotors; ++m) {
-      failed |= pack_err(mrqp_fw_mit_pack_cmd(&kMitRanges, static_cast<unsigned>(m + 1), &c.mit[m], &out));
+      failed |= packErr(mrqp_fw_mit_pack_cmd(&kMitRanges, static_cast<unsigned>(m + 1), &c.mit[m], &out));
       benchmark::DoNotOptimize(out);
     }
     for (std::size_t d = 0; d < kArmDrives; ++d) {
       mrqp_fw_arm_tpdo1 p1;
       mrqp_fw_arm_tpdo2 p2;
       double v[3] = {0.0, 0.0, 0.0};
-      failed |= unpack_err(mrqp_fw_arm_unpack_tpdo1(&c.tpdo1[d], static_cast<unsigned>(d + 1), &p1));
-      failed |= unpack_err(mrqp_fw_arm_unpack_tpdo2(&c.tpdo2[d], static_cast<unsigned>(d + 1), &p2));
+      failed |= unpackErr(mrqp_fw_arm_unpack_tpdo1(&c.tpdo1[d], static_cast<unsigned>(d + 1), &p1));
+      failed |= unpackErr(mrqp_fw_arm_unpack_tpdo2(&c.tpdo2[d], static_cast<unsigned>(d + 1), &p2));
       (void)mrqp_fw_arm_position_from_inc(&kArmScale, p1.position_actual, &v[0]);
       (void)mrqp_fw_arm_torque_from_permille(&kArmScale, p1.torque_actual, &v[1]);
       (void)mrqp_fw_arm_velocity_from_inc(&kArmScale, p2.velocity_actual, &v[2]);
@@ -714,13 +713,13 @@ void bm_cycle_codec(benchmark::State& state) {
     }
     for (std::size_t m = 0; m < kMitMotors; ++m) {
       mrqp_fw_mit_reply r;
-      failed |= unpack_err(mrqp_fw_mit_unpack_reply(&kMitRanges, &c.reply[m], &r));
+      failed |= unpackErr(mrqp_fw_mit_unpack_reply(&kMitRanges, &c.reply[m], &r));
       benchmark::DoNotOptimize(r);
     }
     for (std::size_t s = 0; s < kFtSensors; ++s) {
       mrqp_fw_ft_sample smp;
-      failed |= unpack_err(mrqp_fw_ft_unpack_classic(&kFtClassic, &c.ft[s][0], &c.ft[s][1],
-                                                     0x30u + static_cast<unsigned>(s & 1u), &smp));
+      failed |= unpackErr(mrqp_fw_ft_unpack_classic(&kFtClassic, &c.ft[s][0], &c.ft[s][1],
+                                                    0x30u + static_cast<unsigned>(s & 1u), &smp));
       benchmark::DoNotOptimize(smp);
     }
     i = (i + 1) % kCycles;
@@ -744,17 +743,17 @@ class ReplayBus final : public Bus {
   explicit ReplayBus(SimNode& node, std::vector<std::uint8_t> ft_nodes)
       : node_(node), ft_nodes_(std::move(ft_nodes)) {}
 
-  void start_recording(TimeNs cycle) noexcept {
+  void startRecording(TimeNs cycle) noexcept {
     recording_ = true;
     count_ = 0;
     recorded_at_ = cycle;
   }
-  void start_replay() noexcept {
+  void startReplay() noexcept {
     recording_ = false;
     replay_ = true;
   }
   /// Prepares the replay of cycle k (>= 1 after the recorded one) at time now.
-  void begin_cycle(TimeNs now, std::uint32_t k) noexcept {
+  void beginCycle(TimeNs now, std::uint32_t k) noexcept {
     now_ = now;
     k_ = k;
     pos_ = 0;
@@ -788,7 +787,7 @@ class ReplayBus final : public Bus {
     return ReceiveResult::Frame;
   }
   BusStatus status() const noexcept override { return node_.status(); }
-  bool fd_enabled() const noexcept override { return node_.fd_enabled(); }
+  bool fdEnabled() const noexcept override { return node_.fdEnabled(); }
   const char* name() const noexcept override { return node_.name(); }
 
  private:
@@ -834,8 +833,8 @@ struct Robot {
     SimNodeConfig mc;
     mc.name = "master";
     mc.rx_queue = 1024;
-    arm_master = arm_bus.add_node(mc);
-    mit_master = mit_bus.add_node(mc);
+    arm_master = arm_bus.addNode(mc);
+    mit_master = mit_bus.addNode(mc);
     arm_proxy = std::make_unique<ReplayBus>(*arm_master, std::vector<std::uint8_t>{0x30, 0x31});
     mit_proxy = std::make_unique<ReplayBus>(*mit_master, std::vector<std::uint8_t>{});
     arm_router = std::make_unique<BusRouter>(*arm_proxy);
@@ -848,7 +847,7 @@ struct Robot {
       drvtest::FakeDriveOptions o;
       o.node = static_cast<std::uint8_t>(d + 1);
       o.initial_position = static_cast<std::int32_t>(1000 * d);
-      drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*arm_bus.add_node(SimNodeConfig{}), o));
+      drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*arm_bus.addNode(SimNodeConfig{}), o));
       ArmDriveConfig dc;
       dc.node = o.node;
       ac.drives.push_back(dc);
@@ -857,13 +856,13 @@ struct Robot {
     for (std::size_t s = 0; s < kFtSensors; ++s) {
       const std::uint8_t node = static_cast<std::uint8_t>(0x30 + s);
       sensors.push_back(
-          std::make_unique<drvtest::FakeFtSensor>(*arm_bus.add_node(SimNodeConfig{}), node, false));
-      sensors.back()->set_wrench({10.0 + static_cast<double>(s), -4.0, 25.0, 0.5, -0.25, 0.125});
+          std::make_unique<drvtest::FakeFtSensor>(*arm_bus.addNode(SimNodeConfig{}), node, false));
+      sensors.back()->setWrench({10.0 + static_cast<double>(s), -4.0, 25.0, 0.5, -0.25, 0.125});
       FtSensorConfig sc;
       sc.node = node;
       fc.sensors.push_back(sc);
     }
-    mit_fake = std::make_unique<drvtest::FakeMitMotors>(*mit_bus.add_node(SimNodeConfig{}));
+    mit_fake = std::make_unique<drvtest::FakeMitMotors>(*mit_bus.addNode(SimNodeConfig{}));
     MitHandConfig hc;
     for (std::size_t m = 0; m < kMitMotors; ++m) {
       const std::uint8_t id = static_cast<std::uint8_t>(m + 1);
@@ -897,24 +896,24 @@ struct Robot {
   std::uint32_t cycle(bool sim) noexcept {
     ++k;
     if (sim) {
-      arm_bus.advance_to(t);
-      mit_bus.advance_to(t);
+      arm_bus.advanceTo(t);
+      mit_bus.advanceTo(t);
     } else {
-      arm_proxy->begin_cycle(t, replay_k);
-      mit_proxy->begin_cycle(t, replay_k);
+      arm_proxy->beginCycle(t, replay_k);
+      mit_proxy->beginCycle(t, replay_k);
       ++replay_k;
     }
     arm_router->poll(t);
     mit_router->poll(t);
     std::uint32_t flags = arm->update(t).flags | ft->update(t).flags | mit->update(t).flags;
-    if (arm->all_enabled()) {
+    if (arm->allEnabled()) {
       for (std::size_t d = 0; d < kArmDrives; ++d) {
-        flags |= arm->set_position(d, position[(k + d) & kMask]) == SetpointResult::Ok ? 0u : 0x80000000u;
+        flags |= arm->setPosition(d, position[(k + d) & kMask]) == SetpointResult::Ok ? 0u : 0x80000000u;
       }
     }
-    if (mit->all_on()) {
+    if (mit->allOn()) {
       for (std::size_t m = 0; m < kMitMotors; ++m) {
-        flags |= mit->set_command(m, mit_cmd[(k + m) & kMask]) == SetpointResult::Ok ? 0u : 0x80000000u;
+        flags |= mit->setCommand(m, mit_cmd[(k + m) & kMask]) == SetpointResult::Ok ? 0u : 0x80000000u;
       }
     }
     arm->transmit(t);
@@ -934,7 +933,7 @@ struct Robot {
     for (; n < 1000 && arm->phase() != ArmPhase::Running; ++n) {
       if (arm->phase() == ArmPhase::Failed) {
         return "arm boot failed after " + std::to_string(n) +
-               " cycles: " + describe_faults(arm->faults(), "drive");
+               " cycles: " + describeFaults(arm->faults(), "drive");
       }
       (void)cycle(true);
     }
@@ -942,12 +941,12 @@ struct Robot {
       return "arm boot timed out";
     }
     ft->start(t);
-    arm->request_enable(t);
-    mit->request_enable(t);
+    arm->requestEnable(t);
+    mit->requestEnable(t);
     bool ready = false;
     for (n = 0; n < 1000 && !ready; ++n) {
       (void)cycle(true);
-      ready = arm->all_enabled() && mit->all_on() && ft->sensor(0).valid && ft->sensor(1).valid;
+      ready = arm->allEnabled() && mit->allOn() && ft->sensor(0).valid && ft->sensor(1).valid;
     }
     if (!ready) {
       return "enable timed out";
@@ -965,11 +964,11 @@ struct Robot {
 
   /// Records one steady-state cycle and switches to replay. Empty string on success.
   std::string record() {
-    arm_proxy->start_recording(t);
-    mit_proxy->start_recording(t);
+    arm_proxy->startRecording(t);
+    mit_proxy->startRecording(t);
     const std::uint32_t flags = cycle(true);
-    arm_proxy->start_replay();
-    mit_proxy->start_replay();
+    arm_proxy->startReplay();
+    mit_proxy->startReplay();
     replay_k = 1;
     const std::size_t arm_expected = 2 * kArmDrives + 2 * kFtSensors;
     if (flags != 0u || arm_proxy->recorded() != arm_expected || mit_proxy->recorded() != kMitMotors) {
@@ -1009,7 +1008,7 @@ struct Robot {
   std::uint32_t replay_k = 0;
 };
 
-void bm_cycle_drivers(benchmark::State& state, bool sim) {
+void bmCycleDrivers(benchmark::State& state, bool sim) {
   auto robot = std::make_unique<Robot>();
   std::string err = robot->boot();
   if (err.empty() && !sim) {
@@ -1023,7 +1022,7 @@ void bm_cycle_drivers(benchmark::State& state, bool sim) {
   for (auto _ : state) {
     flags |= robot->cycle(sim);
   }
-  const bool ok = flags == 0u && robot->arm->all_enabled() && robot->mit->all_on() &&
+  const bool ok = flags == 0u && robot->arm->allEnabled() && robot->mit->allOn() &&
                   robot->ft->sensor(0).fresh && robot->ft->sensor(1).fresh;
   if (!ok) {
     state.SkipWithError(("faults during the timed cycles: flags 0x" + Robot::hex(flags)).c_str());
@@ -1047,13 +1046,13 @@ static int unwrappedMain(int argc, char** argv) {
   benchmark::AddCustomContext("mrqp_ndebug", "no (assertions on: timings are not representative)");
 #endif
 
-  register_messages();
-  with_max(benchmark::RegisterBenchmark("BM_cycle/codec", bm_cycle_codec))->Unit(benchmark::kMicrosecond);
-  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_host", [](benchmark::State& s) {
-    bm_cycle_drivers(s, false);
+  registerMessages();
+  withMax(benchmark::RegisterBenchmark("BM_cycle/codec", bmCycleCodec))->Unit(benchmark::kMicrosecond);
+  withMax(benchmark::RegisterBenchmark("BM_cycle/drivers_host", [](benchmark::State& s) {
+    bmCycleDrivers(s, false);
   }))->Unit(benchmark::kMicrosecond);
-  with_max(benchmark::RegisterBenchmark("BM_cycle/drivers_sim_bus", [](benchmark::State& s) {
-    bm_cycle_drivers(s, true);
+  withMax(benchmark::RegisterBenchmark("BM_cycle/drivers_sim_bus", [](benchmark::State& s) {
+    bmCycleDrivers(s, true);
   }))->Unit(benchmark::kMicrosecond);
 
   benchmark::RunSpecifiedBenchmarks();

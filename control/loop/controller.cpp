@@ -108,7 +108,7 @@ bool Controller::bootCycle(drivers::TimeNs now) noexcept {
   if (all_booted && !enable_requested_) {
     enable_requested_ = true;
     for (RobotIo& r : robots_) {
-      for (auto& d : r.devices) d->request_enable(now);
+      for (auto& d : r.devices) d->requestEnable(now);
     }
   }
   for (RobotIo& r : robots_) {
@@ -120,7 +120,7 @@ bool Controller::bootCycle(drivers::TimeNs now) noexcept {
         const drivers::JointFeedback fb = j.device->joint(j.index);
         drivers::JointCommand c;
         c.position = fb.valid ? fb.position : 0.0;
-        if (fb.valid) (void)j.device->set_joint(j.index, c);
+        if (fb.valid) (void)j.device->setJoint(j.index, c);
         const std::size_t i = static_cast<std::size_t>(&j - r.joints.data());
         r.q_sent[i] = c.position;
         r.v_sent[i] = 0.0;
@@ -274,7 +274,7 @@ void Controller::write(drivers::TimeNs now) noexcept {
       c.velocity = r.v_cmd[i];
       // CSP: the position alone; CST: the torque; impedance: the QP's τ as feed-forward.
       c.torque = j.kind == JointKind::Position ? 0.0 : r.tau_cmd[i];
-      (void)j.device->set_joint(j.index, c);
+      (void)j.device->setJoint(j.index, c);
       remember(r, i);
     }
     for (auto& d : r.devices) d->transmit(now);
@@ -313,7 +313,7 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
     if (!robotCycle(r)) continue;
     if (r.safe_stop == SafeStop::QuickStop) {
       if (!quick_stop_sent_) {
-        for (auto& d : r.devices) d->request_quick_stop(now);
+        for (auto& d : r.devices) d->requestQuickStop(now);
       }
     } else {
       for (std::size_t i = 0; i < r.joints.size(); ++i) {
@@ -322,7 +322,7 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
         c.position = r.q_cmd[i];
         c.velocity = r.v_cmd[i];
         c.torque = j.torque ? r.tau_cmd[i] : 0.0;
-        (void)j.device->set_joint(j.index, c);
+        (void)j.device->setJoint(j.index, c);
         remember(r, i);
       }
     }
@@ -336,18 +336,18 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
     started_ = true;
     start_ = now;
   }
-  const drivers::TimeNs t0 = drivers::monotonic_now();
+  const drivers::TimeNs t0 = drivers::monotonicNow();
   read(now);
-  const drivers::TimeNs t1 = drivers::monotonic_now();
+  const drivers::TimeNs t1 = drivers::monotonicNow();
   if (stop_ == StopReason::None) estimate(now);
   for (int h = 0; h < hook_count_; ++h) hooks_[static_cast<std::size_t>(h)]->onCycle(*this, now);
-  const drivers::TimeNs t2 = drivers::monotonic_now();
+  const drivers::TimeNs t2 = drivers::monotonicNow();
   drivers::TimeNs t3 = t2, t4 = t2;
   if (stop_ == StopReason::None) {
     if (problem_.update() != problem::UpdateStatus::Ok) {
       trip(StopReason::NonFinite, 0, nullptr, now);
     }
-    t3 = drivers::monotonic_now();
+    t3 = drivers::monotonicNow();
     if (stop_ == StopReason::None) {
       status_ = problem_.solve();
       if (status_ != qp::QpStatus::Optimal) {
@@ -356,14 +356,14 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
         trip(StopReason::NonFinite, 0, nullptr, now);
       }
     }
-    t4 = drivers::monotonic_now();
+    t4 = drivers::monotonicNow();
   }
   if (stop_ == StopReason::None) {
     write(now);
   } else {
     writeSafe(now);
   }
-  const drivers::TimeNs t5 = drivers::monotonic_now();
+  const drivers::TimeNs t5 = drivers::monotonicNow();
   timing_.phase_ns = {t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4};
   timing_.total_ns = t5 - t0;
   logRow(now);

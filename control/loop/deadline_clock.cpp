@@ -15,14 +15,14 @@ timespec toTimespec(drivers::TimeNs t) noexcept {
 }  // namespace
 
 drivers::TimeNs DeadlineClock::start() noexcept {
-  const drivers::TimeNs now = drivers::monotonic_now();
+  const drivers::TimeNs now = drivers::monotonicNow();
   next_ = now;
   return now;
 }
 
 drivers::TimeNs DeadlineClock::wait() noexcept {
   next_ += period_;
-  drivers::TimeNs now = drivers::monotonic_now();
+  drivers::TimeNs now = drivers::monotonicNow();
   if (now > next_) {
     // Overrun: the previous cycle ended after this deadline. Start now, on the grid, without
     // trying to catch up the missed cycles.
@@ -36,7 +36,7 @@ drivers::TimeNs DeadlineClock::wait() noexcept {
   }
   const timespec ts = toTimespec(next_);
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) != 0) {}
-  now = drivers::monotonic_now();
+  now = drivers::monotonicNow();
   if (now - next_ > worst_late_) worst_late_ = now - next_;
   return next_;
 }

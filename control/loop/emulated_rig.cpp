@@ -21,7 +21,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
     mc.fd = b.decl.data_bitrate != 0;
     mc.tx_queue = 256;
     mc.rx_queue = 1024;
-    masters_.push_back(buses_.back()->add_node(mc));
+    masters_.push_back(buses_.back()->addNode(mc));
   }
   for (const ResolvedRobot& r : hw.robots) {
     const problem::Entity& e = problem.entity(r.entity);
@@ -30,7 +30,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       nc.name = "cia402";
       nc.fd = hw.buses[static_cast<std::size_t>(d.bus)].decl.data_bitrate !=
               0;  // an FD-capable controller on an FD bus
-      drivers::SimNode* node = buses_[static_cast<std::size_t>(d.bus)]->add_node(nc);
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(d.bus)]->addNode(nc);
       if (node == nullptr) {
         throw std::runtime_error("emulated rig: too many nodes on one bus");
       }
@@ -61,7 +61,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       drivers::SimNodeConfig nc;
       nc.name = name;
       nc.fd = hw.buses[static_cast<std::size_t>(bus)].decl.data_bitrate != 0;
-      drivers::SimNode* node = buses_[static_cast<std::size_t>(bus)]->add_node(nc);
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(bus)]->addNode(nc);
       if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
       return node;
     };
@@ -124,7 +124,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       drivers::SimNodeConfig nc;
       nc.name = "ft";
       nc.fd = hw.buses[static_cast<std::size_t>(s.bus)].decl.data_bitrate != 0;
-      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->addNode(nc);
       if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
       ft_.emplace_back(
           r.name + "." + s.frame_name,
@@ -134,7 +134,7 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
       drivers::SimNodeConfig nc;
       nc.name = "imu";
       nc.fd = true;
-      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->add_node(nc);
+      drivers::SimNode* node = buses_[static_cast<std::size_t>(s.bus)]->addNode(nc);
       if (node == nullptr) throw std::runtime_error("emulated rig: too many nodes on one bus");
       imus_.emplace_back(
           r.name + "." + s.frame_name,
@@ -181,7 +181,7 @@ const std::string& EmulatedRig::ftSensorName(const PlantFtSensor* sensor) const 
 
 void EmulatedRig::advanceTo(drivers::TimeNs t) noexcept {
   for (auto& b : buses_) {
-    b->advance_to(t);
+    b->advanceTo(t);
   }
   while (now_ < t) {
     const drivers::TimeNs step = std::min(max_step_, t - now_);

@@ -128,14 +128,14 @@ void FaultInjector::beforeCycle(double t, drivers::TimeNs now) noexcept {
     if (tg.mit != nullptr || tg.board != nullptr) {
       // The hand actuators' own faults: silence, corrupt replies, a tripped controller.
       if (r.kind == "heartbeat-loss") {
-        if (tg.mit != nullptr) tg.mit->set_silent(true);
-        if (tg.board != nullptr) tg.board->set_silent(true);
+        if (tg.mit != nullptr) tg.mit->setSilent(true);
+        if (tg.board != nullptr) tg.board->setSilent(true);
       } else if (r.kind == "corrupt-frames") {
-        if (tg.mit != nullptr) tg.mit->corrupt_replies(1000000u);
-        if (tg.board != nullptr) tg.board->corrupt_feedback(1000000u);
+        if (tg.mit != nullptr) tg.mit->corruptReplies(1000000u);
+        if (tg.board != nullptr) tg.board->corruptFeedback(1000000u);
       } else if (r.kind == "nan-feedback") {
-        if (tg.mit != nullptr) tg.mit->raise_fault(now);
-        if (tg.board != nullptr) tg.board->raise_fault(now);
+        if (tg.mit != nullptr) tg.mit->raiseFault(now);
+        if (tg.board != nullptr) tg.board->raiseFault(now);
       }
     } else if (r.kind == "heartbeat-loss") {
       tg.drive->stopHeartbeat(now);
@@ -146,9 +146,9 @@ void FaultInjector::beforeCycle(double t, drivers::TimeNs now) noexcept {
     } else if (r.kind == "nan-feedback") {
       tg.drive->breakEncoder();
     } else if (r.kind == "bus-off") {
-      rig_->master(static_cast<std::size_t>(tg.bus)).inject_tx_errors(40);  // TEC 8 × 40 > 255
+      rig_->master(static_cast<std::size_t>(tg.bus)).injectTxErrors(40);  // TEC 8 × 40 > 255
     } else if (r.kind == "stale-ft") {
-      tg.ft->firmware().set_stale(true);  // the ADC stopped: the last values repeat, status STALE
+      tg.ft->firmware().setStale(true);  // the ADC stopped: the last values repeat, status STALE
     } else if (r.kind == "infeasible") {
       problem::MultiRobotProblem& p = controller_.problem();
       const RobotIo& rob = controller_.robots()[static_cast<std::size_t>(tg.robot)];

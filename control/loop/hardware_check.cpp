@@ -244,20 +244,20 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     }
     for (const ResolvedSensor& s : rob.ft_sensors) ft += s.bus == static_cast<int>(b) ? 1u : 0u;
     for (const ResolvedSensor& s : rob.imus) imu += s.bus == static_cast<int>(b) ? 1u : 0u;
-    if (drives > 0 || ft > 0 || imu > 0) budget.add_sync();
+    if (drives > 0 || ft > 0 || imu > 0) budget.addSync();
     if (drives > 0) {
-      budget.add_arm_drives(drives, true);
-      budget.add_heartbeats(drives, 0.1);
+      budget.addArmDrives(drives, true);
+      budget.addHeartbeats(drives, 0.1);
     }
-    if (mit > 0) budget.add_mit_motors(mit);
-    for (std::uint32_t joints : board_joints) budget.add_hand_board(joints);
+    if (mit > 0) budget.addMitMotors(mit);
+    for (std::uint32_t joints : board_joints) budget.addHandBoard(joints);
     if (ft > 0) {
       if (rb.decl.data_bitrate != 0)
-        budget.add_ft_fd(ft);
+        budget.addFtFd(ft);
       else
-        budget.add_ft_classic(ft);
+        budget.addFtClassic(ft);
     }
-    if (imu > 0) budget.add_imu_fd(imu);
+    if (imu > 0) budget.addImuFd(imu);
     std::string message;
     if (!budget.check(&message)) {
       fail(rb.decl.source, "hardware.buses[" + std::to_string(b) + "]", message);

@@ -22,7 +22,7 @@ PlantCia402Drive::PlantCia402Drive(drivers::SimNode& node, Plant& plant, const P
     : node_(node), plant_(plant), options_(options), drive_(*this, driveOptions(options)) {
   scale_.increments_per_rev = 524288u;
   scale_.rated_torque_mNm = static_cast<std::uint32_t>(std::lround(options.rated_torque * 1000.0));
-  node_.set_listener(this);
+  node_.setListener(this);
   engageBrake();  // power-on: the holding brake is closed until the drive is enabled
   rearm();
 }
@@ -40,11 +40,11 @@ void PlantCia402Drive::engageBrake() noexcept {
 }
 
 void PlantCia402Drive::rearm() noexcept {
-  const drivers::TimeNs at = drive_.next_event();
+  const drivers::TimeNs at = drive_.nextEvent();
   if (at == Drive::kNever) {
-    node_.cancel_timer();
+    node_.cancelTimer();
   } else {
-    node_.set_timer(at);
+    node_.setTimer(at);
   }
 }
 
@@ -61,14 +61,14 @@ void PlantCia402Drive::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noex
   if (corrupt_ && tpdo && f.len > 1) {
     f.len = static_cast<std::uint8_t>(f.len - 1);
   }
-  (void)node_.send_at(f, at);
+  (void)node_.sendAt(f, at);
 }
 
-void PlantCia402Drive::on_nmt_reset(bool) noexcept { node_.cancel_pending(); }
+void PlantCia402Drive::onNmtReset(bool) noexcept { node_.cancelPending(); }
 
-PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, bool,
-                                                            drivers::TimeNs now) noexcept {
-  const std::uint32_t period_us = drive.od_value(0x1006, 0);
+PlantCia402Drive::Drive::Feedback PlantCia402Drive::onSync(const Drive& drive, bool,
+                                                           drivers::TimeNs now) noexcept {
+  const std::uint32_t period_us = drive.odValue(0x1006, 0);
   const double period = period_us > 0u ? static_cast<double>(period_us) * 1e-6 : 1e-3;
   const int j = options_.joint;
   ServoCommand c;
@@ -79,10 +79,10 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
     stopping_ = false;
     braked_ = false;
     double ff = 0.0;
-    (void)mrqp_fw_arm_torque_from_permille(&scale_, drive.target_torque(), &ff);
+    (void)mrqp_fw_arm_torque_from_permille(&scale_, drive.targetTorque(), &ff);
     if (!options_.torque_mode) {
       double target = 0.0;
-      (void)mrqp_fw_arm_position_from_inc(&scale_, drive.target_position(), &target);
+      (void)mrqp_fw_arm_position_from_inc(&scale_, drive.targetPosition(), &target);
       c.position = target;
       c.velocity = have_last_target_ ? (target - last_target_) / period : 0.0;
       c.torque = ff;
@@ -119,7 +119,7 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
   if (!std::isfinite(q) || !std::isfinite(v)) {
     if (!encoder_fault_sent_) {
       encoder_fault_sent_ = true;
-      drive_.raise_fault(0x7305, 0x01, now);  // incremental sensor 1 fault
+      drive_.raiseFault(0x7305, 0x01, now);  // incremental sensor 1 fault
     }
     return fb;
   }
@@ -131,17 +131,17 @@ PlantCia402Drive::Drive::Feedback PlantCia402Drive::on_sync(const Drive& drive, 
   return fb;
 }
 
-void PlantCia402Drive::on_timer(drivers::SimNode&, drivers::TimeNs now) noexcept {
+void PlantCia402Drive::onTimer(drivers::SimNode&, drivers::TimeNs now) noexcept {
   drive_.advance(now);
   rearm();
 }
 
-void PlantCia402Drive::on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
-                                  const drivers::RxFrame& rx) noexcept {
+void PlantCia402Drive::onReceive(drivers::SimNode&, drivers::ReceiveResult kind,
+                                 const drivers::RxFrame& rx) noexcept {
   if (kind != drivers::ReceiveResult::Frame) {
     return;
   }
-  (void)drive_.on_frame(rx.frame, rx.timestamp);
+  (void)drive_.onFrame(rx.frame, rx.timestamp);
   rearm();
 }
 

@@ -38,12 +38,12 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
  public:
   PlantCia402Drive(drivers::SimNode& node, Plant& plant, const PlantDriveOptions& options);
 
-  void on_receive(drivers::SimNode& node, drivers::ReceiveResult kind,
-                  const drivers::RxFrame& rx) noexcept override;
-  void on_timer(drivers::SimNode& node, drivers::TimeNs now) noexcept override;
+  void onReceive(drivers::SimNode& node, drivers::ReceiveResult kind,
+                 const drivers::RxFrame& rx) noexcept override;
+  void onTimer(drivers::SimNode& node, drivers::TimeNs now) noexcept override;
 
   // ---- fault injection ----
-  void stopHeartbeat(drivers::TimeNs at) noexcept { drive_.stop_heartbeat_at(at); }
+  void stopHeartbeat(drivers::TimeNs at) noexcept { drive_.stopHeartbeatAt(at); }
   /// Drop `per_mille` ‰ of the frames this drive sends (a deterministic sequence).
   void setFrameLoss(unsigned per_mille) noexcept { loss_per_mille_ = per_mille; }
   /// Send every TPDO with a wrong length from now on.
@@ -58,8 +58,8 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
  private:
   using Drive = drivers::EmulatedCia402Drive;
   void emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept override;
-  void on_nmt_reset(bool application) noexcept override;
-  Drive::Feedback on_sync(const Drive& drive, bool new_targets, drivers::TimeNs now) noexcept override;
+  void onNmtReset(bool application) noexcept override;
+  Drive::Feedback onSync(const Drive& drive, bool new_targets, drivers::TimeNs now) noexcept override;
   void rearm() noexcept;
   void engageBrake() noexcept;
 

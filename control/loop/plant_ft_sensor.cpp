@@ -17,7 +17,7 @@ PlantFtSensor::PlantFtSensor(drivers::SimNode& node, Plant& plant, int frame, st
 }
 
 void PlantFtSensor::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept {
-  (void)node_.send_at(frame, at);
+  (void)node_.sendAt(frame, at);
 }
 
 std::array<double, 6> PlantFtSensor::wrench(drivers::TimeNs) noexcept {

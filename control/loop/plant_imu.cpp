@@ -38,7 +38,7 @@ double PlantImu::gaussian() noexcept {
 }
 
 void PlantImu::emit(const mrqp_fw_frame& frame, drivers::TimeNs at) noexcept {
-  (void)node_.send_at(frame, at);
+  (void)node_.sendAt(frame, at);
 }
 
 emulation::ImuValues PlantImu::imu(drivers::TimeNs) noexcept {

@@ -9,7 +9,7 @@ std::size_t PlantJointHost::addJoint(int plant_joint, double torque_limit) {
 }
 
 void PlantJointHost::emit(const mrqp_fw_frame& frame, emulation::TimeNs at) noexcept {
-  (void)node_.send_at(frame, at);
+  (void)node_.sendAt(frame, at);
 }
 
 emulation::JointMeasurement PlantJointHost::measure(std::size_t joint, emulation::TimeNs) noexcept {

@@ -11,10 +11,10 @@
 
 namespace mrqp::drivers {
 
-using detail::cia402_fault_state;
-using detail::cia402_state_reached;
+using detail::cia402FaultState;
+using detail::cia402StateReached;
 
-const char* arm_phase_str(ArmPhase phase) noexcept {
+const char* armPhaseStr(ArmPhase phase) noexcept {
   switch (phase) {
     case ArmPhase::Idle:
       return "idle";
@@ -48,26 +48,26 @@ bool ArmDriver::send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcep
   return false;
 }
 
-void ArmDriver::set_pending(Drive& d, const mrqp_fw_frame& f) noexcept {
+void ArmDriver::setPending(Drive& d, const mrqp_fw_frame& f) noexcept {
   d.pending = f;
   d.has_pending = true;
 }
 
-bool ArmDriver::failed_sdo_step(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept {
+bool ArmDriver::failedSdoStep(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept {
   if (step != SdoWriteSequence::Step::Failed && step != SdoWriteSequence::Step::FailedSend) {
     return false;
   }
   if (step == SdoWriteSequence::Step::FailedSend) {
-    set_pending(d, out);
+    setPending(d, out);
   }
-  d.faults.sdo_abort_code = d.sdo.abort_code();
+  d.faults.sdo_abort_code = d.sdo.abortCode();
   d.faults.sdo_index = d.sdo.current().index;
   d.faults.sdo_subindex = d.sdo.current().subindex;
-  fail_boot(d, fault::kTimeout | fault::kBootFailed);
+  failBoot(d, fault::kTimeout | fault::kBootFailed);
   return true;
 }
 
-void ArmDriver::fail_boot(Drive& d, std::uint32_t flags) noexcept {
+void ArmDriver::failBoot(Drive& d, std::uint32_t flags) noexcept {
   d.events |= flags;
   if (d.recovery != Drive::Recovery::None) {
     // A recovery's reconfiguration failed: this drive stays down, the others
@@ -116,11 +116,11 @@ void ArmDriver::start(TimeNs now) noexcept {
     d.state.controlword = 0;
     mrqp_fw_frame f;
     d.nmt.begin(now, &f);
-    set_pending(d, f);
+    setPending(d, f);
   }
 }
 
-void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept {
+void ArmDriver::setTarget(mrqp_fw_cia402_state target, TimeNs now) noexcept {
   if (phase_ == ArmPhase::Stopping || phase_ == ArmPhase::Stopped) {
     return;  // the safe exit owns the drives now
   }
@@ -133,13 +133,13 @@ void ArmDriver::set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept {
   }
 }
 
-void ArmDriver::request_enable(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_OPERATION_ENABLED, now); }
+void ArmDriver::requestEnable(TimeNs now) noexcept { setTarget(MRQP_FW_CIA402_OPERATION_ENABLED, now); }
 
-void ArmDriver::request_disable(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_SWITCH_ON_DISABLED, now); }
+void ArmDriver::requestDisable(TimeNs now) noexcept { setTarget(MRQP_FW_CIA402_SWITCH_ON_DISABLED, now); }
 
-void ArmDriver::request_quick_stop(TimeNs now) noexcept { set_target(MRQP_FW_CIA402_QUICK_STOP_ACTIVE, now); }
+void ArmDriver::requestQuickStop(TimeNs now) noexcept { setTarget(MRQP_FW_CIA402_QUICK_STOP_ACTIVE, now); }
 
-bool ArmDriver::all_enabled() const noexcept {
+bool ArmDriver::allEnabled() const noexcept {
   for (const Drive& d : drives_) {
     if (!d.state.valid || d.state.state != MRQP_FW_CIA402_OPERATION_ENABLED) {
       return false;
@@ -148,16 +148,16 @@ bool ArmDriver::all_enabled() const noexcept {
   return !drives_.empty();
 }
 
-bool ArmDriver::all_disabled() const noexcept {
+bool ArmDriver::allDisabled() const noexcept {
   for (const Drive& d : drives_) {
-    if (!d.state.valid || !cia402_state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
+    if (!d.state.valid || !cia402StateReached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state)) {
       return false;
     }
   }
   return !drives_.empty();
 }
 
-SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept {
+SetpointResult ArmDriver::setPosition(std::size_t i, double rad) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -178,7 +178,7 @@ SetpointResult ArmDriver::set_position(std::size_t i, double rad) noexcept {
   return SetpointResult::Ok;
 }
 
-SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept {
+SetpointResult ArmDriver::setTorque(std::size_t i, double nm) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -199,21 +199,21 @@ SetpointResult ArmDriver::set_torque(std::size_t i, double nm) noexcept {
   return SetpointResult::Ok;
 }
 
-JointMode ArmDriver::joint_mode(std::size_t i) const noexcept {
+JointMode ArmDriver::jointMode(std::size_t i) const noexcept {
   return i < drives_.size() && drives_[i].cfg.mode == MRQP_FW_MODE_CST ? JointMode::Torque
                                                                        : JointMode::Position;
 }
 
-SetpointResult ArmDriver::set_joint(std::size_t i, const JointCommand& c) noexcept {
+SetpointResult ArmDriver::setJoint(std::size_t i, const JointCommand& c) noexcept {
   if (i >= drives_.size()) {
     return SetpointResult::BadIndex;
   }
   if (drives_[i].cfg.mode == MRQP_FW_MODE_CST) {
-    return set_torque(i, c.torque);
+    return setTorque(i, c.torque);
   }
   // CSP: target position and torque feed-forward; the worse of the two results.
-  const SetpointResult p = set_position(i, c.position);
-  const SetpointResult t = set_torque(i, c.torque);
+  const SetpointResult p = setPosition(i, c.position);
+  const SetpointResult t = setTorque(i, c.torque);
   return static_cast<std::uint8_t>(p) >= static_cast<std::uint8_t>(t) ? p : t;
 }
 
@@ -233,7 +233,7 @@ JointFeedback ArmDriver::joint(std::size_t i) const noexcept {
 }
 
 const FaultReport& ArmDriver::update(TimeNs now) noexcept {
-  routers_.start_cycle();
+  routers_.startCycle();
 
   // Boot progression.
   if (phase_ == ArmPhase::Resetting) {
@@ -247,7 +247,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
     } else {
       for (Drive& d : drives_) {
         if (d.nmt.process(now)) {
-          fail_boot(d, fault::kTimeout | fault::kBootFailed);
+          failBoot(d, fault::kTimeout | fault::kBootFailed);
         }
       }
     }
@@ -257,7 +257,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
     for (Drive& d : drives_) {
       mrqp_fw_frame out;
       const SdoWriteSequence::Step step = d.sdo.process(now, false, &out);
-      failed_sdo_step(d, step, out);
+      failedSdoStep(d, step, out);
       d.faults.tolerated_aborts = d.sdo.tolerated();
       all = all && d.sdo.done();
     }
@@ -266,19 +266,19 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
       phase_since_ = now;
       for (Drive& d : drives_) {
         mrqp_fw_frame f;
-        d.nmt.start_remote(now, &f);
-        set_pending(d, f);
+        d.nmt.startRemote(now, &f);
+        setPending(d, f);
       }
     }
   }
 
   if (phase_ == ArmPhase::Running) {
     for (Drive& d : drives_) {
-      step_recovery(d, now);
+      stepRecovery(d, now);
     }
   }
   if (phase_ == ArmPhase::Stopping) {
-    step_safe_exit(now);
+    stepSafeExit(now);
   }
 
   const TimeNs nmt_grace = 2 * config_.cycle_period;
@@ -315,9 +315,9 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
       }
       if (d.state.valid) {
         const mrqp_fw_cia402_state s = d.state.state;
-        if (cia402_fault_state(s)) {
+        if (cia402FaultState(s)) {
           flags |= fault::kDeviceFault;
-          if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !cia402_fault_state(d.prev_state)) {
+          if (d.target == MRQP_FW_CIA402_OPERATION_ENABLED && !cia402FaultState(d.prev_state)) {
             // Fell into Fault while enabled: stay there until the caller asks
             // again.
             d.target = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
@@ -334,7 +334,7 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         }
         d.prev_state = s;
       }
-      if (!(d.state.valid && cia402_state_reached(d.target, d.state.state)) &&
+      if (!(d.state.valid && cia402StateReached(d.target, d.state.state)) &&
           now - d.target_since > config_.enable_timeout) {
         flags |= fault::kTimeout;
       }
@@ -346,8 +346,8 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
   if (phase_ == ArmPhase::Running && config_.recovery == RecoveryPolicy::Automatic && !safe_state_) {
     for (std::size_t i = 0; i < drives_.size(); ++i) {
       Drive& d = drives_[i];
-      if (needs_recovery(i) && (!d.attempted || now - d.recovery_attempt >= config_.recovery_retry)) {
-        start_recovery(d, now);
+      if (needsRecovery(i) && (!d.attempted || now - d.recovery_attempt >= config_.recovery_retry)) {
+        startRecovery(d, now);
       }
     }
   }
@@ -370,7 +370,7 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
       }
       if (phase_ == ArmPhase::Stopping && exit_nmt_stage_) {
         if (d.exit_step == 1) {
-          queue_exit_nmt(d);  // the SDO disable is on its way: the NMT command next
+          queueExitNmt(d);  // the SDO disable is on its way: the NMT command next
         } else if (d.exit_step == 2) {
           d.exit_step = 3;  // the NMT command of the safe exit is on its way
         }
@@ -386,13 +386,13 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
         }
         mrqp_fw_frame out;
         if (d.sdo.process(now, true, &out) != SdoWriteSequence::Step::Send) {
-          fail_boot(d, fault::kBootFailed);
+          failBoot(d, fault::kBootFailed);
           continue;
         }
         if (send(d.cfg.bus, &d, out)) {
           ++count;
         } else {
-          set_pending(d, out);
+          setPending(d, out);
         }
       }
       break;
@@ -413,13 +413,13 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
     }
     case ArmPhase::Running:
       for (Drive& d : drives_) {
-        transmit_recovery(d, &count, now);
+        transmitRecovery(d, &count, now);
       }
-      count += transmit_cyclic(now);
+      count += transmitCyclic(now);
       break;
     case ArmPhase::Stopping: {
       if (!exit_nmt_stage_) {
-        count += transmit_cyclic(now);
+        count += transmitCyclic(now);
         break;
       }
       bool all_sent = true;
@@ -450,7 +450,7 @@ std::size_t ArmDriver::transmit(TimeNs now) noexcept {
   return count;
 }
 
-std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
+std::size_t ArmDriver::transmitCyclic(TimeNs now) noexcept {
   std::size_t count = 0;
   for (std::size_t s = 0; s < buses_.size(); ++s) {
     BusSlot& slot = buses_[s];
@@ -465,7 +465,7 @@ std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
       // A drive in Fault is only reset when the caller asks for Operation
       // enabled again.
       const std::uint16_t cw =
-          cia402_fault_state(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
+          cia402FaultState(current) && d.target != MRQP_FW_CIA402_OPERATION_ENABLED
               ? static_cast<std::uint16_t>(MRQP_FW_CW_DISABLE_VOLTAGE)
               : mrqp_fw_cia402_master_controlword(current, d.target, d.state.controlword);
       const bool enabled =
@@ -502,8 +502,8 @@ std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
       slot.sync.process(now, &f);
       if (send(s, nullptr, f)) {
         ++count;
-        if (!routers_.router(s).bus().echoes_own()) {
-          slot.jitter.on_sync(now);  // no echo: the time handed to transmit()
+        if (!routers_.router(s).bus().echoesOwn()) {
+          slot.jitter.onSync(now);  // no echo: the time handed to transmit()
         }
       }
     }
@@ -514,39 +514,39 @@ std::size_t ArmDriver::transmit_cyclic(TimeNs now) noexcept {
   return count;
 }
 
-Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept {
+Claim ArmDriver::onSdo(Drive& d, const mrqp_fw_frame& f) noexcept {
   if (phase_ == ArmPhase::Stopping || phase_ == ArmPhase::Stopped) {
     return Claim::Accepted;  // the answer to the safe exit's controlword write (or a late one)
   }
   mrqp_fw_frame out;
-  switch (d.sdo.on_frame(f, &out)) {
+  switch (d.sdo.onFrame(f, &out)) {
     case SdoWriteSequence::Step::Done:
       return Claim::Accepted;
     case SdoWriteSequence::Step::Send:
-      set_pending(d, out);
+      setPending(d, out);
       return Claim::Accepted;
     case SdoWriteSequence::Step::Failed:
-      d.faults.sdo_abort_code = d.sdo.abort_code();
+      d.faults.sdo_abort_code = d.sdo.abortCode();
       d.faults.sdo_index = d.sdo.current().index;
       d.faults.sdo_subindex = d.sdo.current().subindex;
-      fail_boot(d, fault::kBootFailed);
+      failBoot(d, fault::kBootFailed);
       return Claim::Accepted;
     case SdoWriteSequence::Step::FailedSend:
-      set_pending(d, out);
-      d.faults.sdo_abort_code = d.sdo.abort_code();
+      setPending(d, out);
+      d.faults.sdo_abort_code = d.sdo.abortCode();
       d.faults.sdo_index = d.sdo.current().index;
       d.faults.sdo_subindex = d.sdo.current().subindex;
       ++d.faults.corrupt_frames;
-      fail_boot(d, fault::kBootFailed | fault::kCorruptFrame);
+      failBoot(d, fault::kBootFailed | fault::kCorruptFrame);
       return Claim::Rejected;
     case SdoWriteSequence::Step::Mismatch:
       d.faults.sdo_check_failed = true;
       d.faults.sdo_check_expected = d.sdo.current().value;
-      d.faults.sdo_check_actual = d.sdo.read_value();
+      d.faults.sdo_check_actual = d.sdo.readValue();
       d.faults.sdo_check_mask = d.sdo.current().mask;
       d.faults.sdo_index = d.sdo.current().index;
       d.faults.sdo_subindex = d.sdo.current().subindex;
-      fail_boot(d, fault::kBootFailed);
+      failBoot(d, fault::kBootFailed);
       return Claim::Accepted;
     case SdoWriteSequence::Step::Idle:
     case SdoWriteSequence::Step::Unexpected:
@@ -557,7 +557,7 @@ Claim ArmDriver::on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept {
   return Claim::Rejected;
 }
 
-void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept {
+void ArmDriver::decodeTpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept {
   mrqp_fw_arm_tpdo1 p;
   if (mrqp_fw_arm_unpack_tpdo1(&f, d.cfg.node, &p) != MRQP_FW_OK) {
     ++d.faults.corrupt_frames;
@@ -586,7 +586,7 @@ void ArmDriver::decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcep
   d.last_claim = Claim::Accepted;
 }
 
-void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept {
+void ArmDriver::decodeTpdo2(Drive& d, const mrqp_fw_frame& f) noexcept {
   mrqp_fw_arm_tpdo2 p;
   if (mrqp_fw_arm_unpack_tpdo2(&f, d.cfg.node, &p) != MRQP_FW_OK) {
     ++d.faults.corrupt_frames;
@@ -607,13 +607,13 @@ void ArmDriver::decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept {
   d.last_claim = Claim::Accepted;
 }
 
-void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+void ArmDriver::onOwnFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   if (slot < 0 || (rx.frame.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return;
   }
   if (rx.frame.id == MRQP_FW_COB_SYNC) {
-    buses_[static_cast<std::size_t>(slot)].jitter.on_sync(detail::rx_time(rx, now));
+    buses_[static_cast<std::size_t>(slot)].jitter.onSync(detail::rxTime(rx, now));
     return;
   }
   if (phase_ != ArmPhase::Resetting || rx.frame.id != MRQP_FW_COB_NMT) {
@@ -621,13 +621,13 @@ void ArmDriver::on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs no
   }
   for (Drive& d : drives_) {
     if (d.cfg.bus == static_cast<std::size_t>(slot)) {
-      (void)d.nmt.on_own_command(rx.frame);
+      (void)d.nmt.onOwnCommand(rx.frame);
     }
   }
 }
 
-Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+Claim ArmDriver::onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;
@@ -642,7 +642,7 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
     return Claim::NotMine;
   }
   Drive& d = drives_[static_cast<std::size_t>(index)];
-  const TimeNs t = detail::rx_time(rx, now);
+  const TimeNs t = detail::rxTime(rx, now);
   switch (kind) {
     case MRQP_FW_COB_KIND_HEARTBEAT: {
       std::uint8_t n = 0;
@@ -651,10 +651,10 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
         break;
       }
       d.state.nmt_state = static_cast<std::uint8_t>(st);
-      d.heartbeat.on_heartbeat(st, t);
+      d.heartbeat.onHeartbeat(st, t);
       if (st == MRQP_FW_NMT_STATE_BOOTUP) {
         if (phase_ == ArmPhase::Resetting) {
-          (void)d.nmt.on_boot_up(t);
+          (void)d.nmt.onBootUp(t);
         } else if (phase_ == ArmPhase::Running) {
           d.events |= fault::kStateMismatch;  // the drive rebooted on its own: its
                                               // configuration is lost
@@ -684,13 +684,13 @@ Claim ArmDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
       return Claim::Accepted;
     }
     case MRQP_FW_COB_KIND_TPDO1:
-      decode_tpdo1(d, f, t);
+      decodeTpdo1(d, f, t);
       return d.last_claim;
     case MRQP_FW_COB_KIND_TPDO2:
-      decode_tpdo2(d, f);
+      decodeTpdo2(d, f);
       return d.last_claim;
     case MRQP_FW_COB_KIND_SDO_TX:
-      return on_sdo(d, f);
+      return onSdo(d, f);
     default:
       return Claim::NotMine;
   }

@@ -10,10 +10,10 @@
 
 namespace mrqp::drivers {
 
-using detail::cia402_fault_state;
-using detail::cia402_state_reached;
+using detail::cia402FaultState;
+using detail::cia402StateReached;
 
-bool ArmDriver::needs_recovery(std::size_t i) const noexcept {
+bool ArmDriver::needsRecovery(std::size_t i) const noexcept {
   if (i >= drives_.size() || phase_ != ArmPhase::Running) {
     return false;
   }
@@ -25,16 +25,16 @@ bool ArmDriver::needs_recovery(std::size_t i) const noexcept {
                                 d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL &&
                                 d.heartbeat.last() > d.nmt.commanded() + 2 * config_.cycle_period;
   const bool fell =
-      wanted_ == MRQP_FW_CIA402_OPERATION_ENABLED && d.state.valid && cia402_fault_state(d.state.state);
+      wanted_ == MRQP_FW_CIA402_OPERATION_ENABLED && d.state.valid && cia402FaultState(d.state.state);
   return d.rebooted || left_operational || fell;
 }
 
 bool ArmDriver::ready() const noexcept {
-  if (phase_ != ArmPhase::Running || !all_enabled()) {
+  if (phase_ != ArmPhase::Running || !allEnabled()) {
     return false;
   }
   for (std::size_t i = 0; i < drives_.size(); ++i) {
-    if (needs_recovery(i) || recovering(i)) {
+    if (needsRecovery(i) || recovering(i)) {
       return false;
     }
   }
@@ -45,21 +45,21 @@ bool ArmDriver::recovering(std::size_t i) const noexcept {
   return i < drives_.size() && drives_[i].recovery != Drive::Recovery::None;
 }
 
-std::size_t ArmDriver::request_recovery(TimeNs now) noexcept {
+std::size_t ArmDriver::requestRecovery(TimeNs now) noexcept {
   if (safe_state_ || phase_ != ArmPhase::Running) {
     return 0;
   }
   std::size_t started = 0;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
-    if (needs_recovery(i)) {
-      start_recovery(drives_[i], now);
+    if (needsRecovery(i)) {
+      startRecovery(drives_[i], now);
       ++started;
     }
   }
   return started;
 }
 
-void ArmDriver::start_recovery(Drive& d, TimeNs now) noexcept {
+void ArmDriver::startRecovery(Drive& d, TimeNs now) noexcept {
   d.recovery_failed = false;
   d.attempted = true;
   d.recovery_attempt = now;
@@ -79,32 +79,32 @@ void ArmDriver::start_recovery(Drive& d, TimeNs now) noexcept {
   }
   if (d.state.nmt_state != MRQP_FW_NMT_STATE_OPERATIONAL && d.heartbeat.monitoring()) {
     mrqp_fw_frame f;
-    d.nmt.start_remote(now, &f);
-    set_pending(d, f);
+    d.nmt.startRemote(now, &f);
+    setPending(d, f);
   }
   d.recovery = Drive::Recovery::Starting;
 }
 
-void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
+void ArmDriver::stepRecovery(Drive& d, TimeNs now) noexcept {
   if (d.recovery == Drive::Recovery::None) {
     return;
   }
   if (now - d.recovery_since > config_.boot_timeout) {
     d.events |= fault::kTimeout;
-    fail_boot(d, fault::kBootFailed);  // in a recovery: only this drive stays down
+    failBoot(d, fault::kBootFailed);  // in a recovery: only this drive stays down
     return;
   }
   if (d.recovery == Drive::Recovery::Configuring) {
     mrqp_fw_frame out;
     const SdoWriteSequence::Step step = d.sdo.process(now, false, &out);
-    if (failed_sdo_step(d, step, out)) {
+    if (failedSdoStep(d, step, out)) {
       return;
     }
     if (d.sdo.done() && !d.has_pending) {
       d.faults.tolerated_aborts = d.sdo.tolerated();
       mrqp_fw_frame f;
-      d.nmt.start_remote(now, &f);
-      set_pending(d, f);
+      d.nmt.startRemote(now, &f);
+      setPending(d, f);
       d.recovery = Drive::Recovery::Starting;
     }
     return;
@@ -122,8 +122,8 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
       return;
     }
     mrqp_fw_frame f;
-    d.nmt.start_remote(now, &f);
-    set_pending(d, f);
+    d.nmt.startRemote(now, &f);
+    setPending(d, f);
     return;
   }
   const bool operational = d.heartbeat.monitoring() ? d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL &&
@@ -140,29 +140,29 @@ void ArmDriver::step_recovery(Drive& d, TimeNs now) noexcept {
     d.target = wanted_;
     d.target_since = now;
   }
-  if (cia402_state_reached(wanted_, d.state.state)) {
+  if (cia402StateReached(wanted_, d.state.state)) {
     d.recovery = Drive::Recovery::None;
     ++d.faults.recoveries;
   }
 }
 
-void ArmDriver::transmit_recovery(Drive& d, std::size_t* count, TimeNs now) noexcept {
+void ArmDriver::transmitRecovery(Drive& d, std::size_t* count, TimeNs now) noexcept {
   if (d.recovery != Drive::Recovery::Configuring || d.sdo.done() || d.sdo.busy() || d.has_pending) {
     return;
   }
   mrqp_fw_frame out;
   if (d.sdo.process(now, true, &out) != SdoWriteSequence::Step::Send) {
-    fail_boot(d, fault::kBootFailed);
+    failBoot(d, fault::kBootFailed);
     return;
   }
   if (send(d.cfg.bus, &d, out)) {
     ++*count;
   } else {
-    set_pending(d, out);
+    setPending(d, out);
   }
 }
 
-void ArmDriver::request_safe_exit(TimeNs now) noexcept {
+void ArmDriver::requestSafeExit(TimeNs now) noexcept {
   if (phase_ == ArmPhase::Stopping || phase_ == ArmPhase::Stopped) {
     return;
   }
@@ -196,7 +196,7 @@ void ArmDriver::request_safe_exit(TimeNs now) noexcept {
   }
 }
 
-void ArmDriver::step_safe_exit(TimeNs now) noexcept {
+void ArmDriver::stepSafeExit(TimeNs now) noexcept {
   if (exit_nmt_stage_) {
     return;  // the NMT commands are queued (transmit() ends the exit)
   }
@@ -205,7 +205,7 @@ void ArmDriver::step_safe_exit(TimeNs now) noexcept {
     // A drive without feedback, or not operational, cannot report a stop: nothing to wait for.
     const bool talking = d.state.valid && d.state.nmt_state != MRQP_FW_NMT_STATE_PRE_OPERATIONAL &&
                          d.state.nmt_state != MRQP_FW_NMT_STATE_STOPPED;
-    if (talking && !cia402_state_reached(d.target, d.state.state)) {
+    if (talking && !cia402StateReached(d.target, d.state.state)) {
       all = false;
     }
   }
@@ -234,20 +234,20 @@ void ArmDriver::step_safe_exit(TimeNs now) noexcept {
   for (Drive& d : drives_) {
     const bool operational = d.state.nmt_state == MRQP_FW_NMT_STATE_OPERATIONAL;
     const bool powered =
-        d.state.valid && !cia402_state_reached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state);
+        d.state.valid && !cia402StateReached(MRQP_FW_CIA402_SWITCH_ON_DISABLED, d.state.state);
     if (!operational && powered) {
       const std::uint8_t zero[2] = {0, 0};
       mrqp_fw_frame f;
       (void)mrqp_fw_sdo_pack_download_req(d.cfg.node, MRQP_FW_OBJ_CONTROLWORD, 0, zero, 2, &f);
-      set_pending(d, f);
+      setPending(d, f);
       d.exit_step = 1;
     } else {
-      queue_exit_nmt(d);
+      queueExitNmt(d);
     }
   }
 }
 
-void ArmDriver::queue_exit_nmt(Drive& d) noexcept {
+void ArmDriver::queueExitNmt(Drive& d) noexcept {
   if (config_.exit_nmt == ExitNmt::Unchanged) {
     d.exit_step = 3;
     return;
@@ -255,7 +255,7 @@ void ArmDriver::queue_exit_nmt(Drive& d) noexcept {
   mrqp_fw_frame f;
   (void)mrqp_fw_nmt_pack(config_.exit_nmt == ExitNmt::Stopped ? MRQP_FW_NMT_STOP : MRQP_FW_NMT_ENTER_PREOP,
                          d.cfg.node, &f);
-  set_pending(d, f);
+  setPending(d, f);
   d.exit_step = 2;
 }
 

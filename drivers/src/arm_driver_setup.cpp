@@ -9,7 +9,7 @@
 
 namespace mrqp::drivers {
 
-std::vector<SdoWrite> ArmDriver::build_writes(const ArmDriveConfig& drive) const {
+std::vector<SdoWrite> ArmDriver::buildWrites(const ArmDriveConfig& drive) const {
   const unsigned n = drive.node;
   std::vector<SdoWrite> writes;
   auto w = [&writes](std::uint16_t index, std::uint8_t sub, std::uint8_t size, std::uint32_t value,
@@ -191,8 +191,8 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
     p->buses_[d.cfg.bus].node_to_drive[d.cfg.node] = static_cast<std::int16_t>(i);
     p->buses_[d.cfg.bus].has_drives = true;
     d.nmt.init(d.cfg.node, config.reset, config.boot_timeout);
-    d.nmt.set_echo(buses[d.cfg.bus]->bus().echoes_own());
-    d.sdo.init(d.cfg.node, p->build_writes(d.cfg), config.sdo_timeout);
+    d.nmt.setEcho(buses[d.cfg.bus]->bus().echoesOwn());
+    d.sdo.init(d.cfg.node, p->buildWrites(d.cfg), config.sdo_timeout);
     d.heartbeat.init(config.producer_heartbeat_ms > 0u, config.heartbeat_timeout);
     d.faults.node = d.cfg.node;
   }
@@ -202,7 +202,7 @@ std::unique_ptr<ArmDriver> ArmDriver::create(const std::vector<BusRouter*>& buse
   return p;
 }
 
-void ArmDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
+void ArmDriver::declareTraffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Drive& d : drives_) {
     n += d.cfg.bus == bus ? 1u : 0u;
@@ -211,14 +211,14 @@ void ArmDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
     return;
   }
   if (config_.produce_sync) {
-    budget.add_sync();
+    budget.addSync();
   }
-  budget.add_arm_drives(n, config_.tpdo2);
+  budget.addArmDrives(n, config_.tpdo2);
   if (config_.producer_heartbeat_ms > 0u) {
-    budget.add_heartbeats(n, config_.producer_heartbeat_ms / 1000.0);
+    budget.addHeartbeats(n, config_.producer_heartbeat_ms / 1000.0);
   }
   if (config_.master_node != 0u) {
-    budget.add_periodic("master heartbeat", 1, 1, FrameFormat::Classic, config_.master_heartbeat_ms / 1000.0);
+    budget.addPeriodic("master heartbeat", 1, 1, FrameFormat::Classic, config_.master_heartbeat_ms / 1000.0);
   }
 }
 

@@ -16,7 +16,7 @@ std::string pct(double u) {
   return buf;
 }
 
-BusSpec spec_of(const BusKind& kind, double cycle_hz, double limit) {
+BusSpec specOf(const BusKind& kind, double cycle_hz, double limit) {
   BusSpec s;
   s.name = kind.label;
   s.nominal_bps = kind.nominal_bps;
@@ -26,30 +26,30 @@ BusSpec spec_of(const BusKind& kind, double cycle_hz, double limit) {
   return s;
 }
 
-double arm_load(const RobotTraffic& robot, const BusKind& kind, double hz, double limit, std::uint32_t drives,
-                std::uint32_t ft) {
-  BusBudget b(spec_of(kind, hz, limit));
+double armLoad(const RobotTraffic& robot, const BusKind& kind, double hz, double limit, std::uint32_t drives,
+               std::uint32_t ft) {
+  BusBudget b(specOf(kind, hz, limit));
   if (drives + ft > 0u) {
-    b.add_sync();
+    b.addSync();
   }
-  b.add_arm_drives(drives, robot.arm_tpdo2);
+  b.addArmDrives(drives, robot.arm_tpdo2);
   if (robot.heartbeat_period_s > 0.0) {
-    b.add_heartbeats(drives, robot.heartbeat_period_s);
+    b.addHeartbeats(drives, robot.heartbeat_period_s);
   }
   if (kind.data_bps > 0u) {
-    b.add_ft_fd(ft);
+    b.addFtFd(ft);
   } else {
-    b.add_ft_classic(ft);
+    b.addFtClassic(ft);
   }
   return b.result().utilisation_worst;
 }
 
-double hand_load(const BusKind& kind, double hz, double limit, std::uint32_t mit,
-                 const std::vector<std::uint32_t>& boards) {
-  BusBudget b(spec_of(kind, hz, limit));
-  b.add_mit_motors(mit);
+double handLoad(const BusKind& kind, double hz, double limit, std::uint32_t mit,
+                const std::vector<std::uint32_t>& boards) {
+  BusBudget b(specOf(kind, hz, limit));
+  b.addMitMotors(mit);
   for (std::uint32_t joints : boards) {
-    b.add_hand_board(joints);
+    b.addHandBoard(joints);
   }
   return b.result().utilisation_worst;
 }
@@ -66,7 +66,7 @@ struct HandBus {
   std::vector<std::uint32_t> boards;
 };
 
-std::string arm_content(std::uint32_t drives, std::uint32_t ft) {
+std::string armContent(std::uint32_t drives, std::uint32_t ft) {
   std::string s;
   if (drives > 0u) {
     s += std::to_string(drives) + (drives == 1u ? " drive" : " drives");
@@ -77,7 +77,7 @@ std::string arm_content(std::uint32_t drives, std::uint32_t ft) {
   return s;
 }
 
-std::string hand_content(const HandBus& h) {
+std::string handContent(const HandBus& h) {
   if (h.mit > 0u) {
     return std::to_string(h.mit) + " MIT";
   }
@@ -90,19 +90,19 @@ std::string hand_content(const HandBus& h) {
 
 }  // namespace
 
-BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit) {
+BusPlan planBuses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit) {
   BusPlan plan;
   const bool fd = kind.data_bps > 0u;
 
   for (std::uint32_t k = 1; k <= 127u; ++k) {
-    if (!fits(arm_load(robot, kind, cycle_hz, limit, k, 0), limit)) {
+    if (!fits(armLoad(robot, kind, cycle_hz, limit, k, 0), limit)) {
       break;
     }
     plan.max_drives_per_bus = k;
   }
   if (!fd) {
     for (std::uint32_t k = 1; k <= 127u; ++k) {
-      if (!fits(hand_load(kind, cycle_hz, limit, k, {}), limit)) {
+      if (!fits(handLoad(kind, cycle_hz, limit, k, {}), limit)) {
         break;
       }
       plan.max_mit_per_bus = k;
@@ -115,7 +115,7 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
     for (ArmBus& b : arm) {
       const std::uint32_t d = b.drives + (drive ? 1u : 0u);
       const std::uint32_t f = b.ft + (drive ? 0u : 1u);
-      if (fits(arm_load(robot, kind, cycle_hz, limit, d, f), limit)) {
+      if (fits(armLoad(robot, kind, cycle_hz, limit, d, f), limit)) {
         b.drives = d;
         b.ft = f;
         return true;
@@ -123,7 +123,7 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
     }
     ArmBus b;
     (drive ? b.drives : b.ft) = 1u;
-    if (!fits(arm_load(robot, kind, cycle_hz, limit, b.drives, b.ft), limit)) {
+    if (!fits(armLoad(robot, kind, cycle_hz, limit, b.drives, b.ft), limit)) {
       return false;
     }
     arm.push_back(b);
@@ -149,14 +149,14 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
       for (std::uint32_t i = 0; i < robot.hand_joints && plan.feasible; ++i) {
         bool placed = false;
         for (HandBus& b : hand) {
-          if (fits(hand_load(kind, cycle_hz, limit, b.mit + 1u, {}), limit)) {
+          if (fits(handLoad(kind, cycle_hz, limit, b.mit + 1u, {}), limit)) {
             ++b.mit;
             placed = true;
             break;
           }
         }
         if (!placed) {
-          if (!fits(hand_load(kind, cycle_hz, limit, 1u, {}), limit)) {
+          if (!fits(handLoad(kind, cycle_hz, limit, 1u, {}), limit)) {
             plan.feasible = false;
             plan.error = "one MIT motor alone exceeds a bus";
           } else {
@@ -175,7 +175,7 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
         for (std::uint32_t i = 0; i < n; ++i) {
           const std::uint32_t j = robot.hand_joints / n + (i < robot.hand_joints % n ? 1u : 0u);
           boards.push_back(j);
-          if (j > 32u || !fits(hand_load(kind, cycle_hz, limit, 0u, {j}), limit)) {
+          if (j > 32u || !fits(handLoad(kind, cycle_hz, limit, 0u, {j}), limit)) {
             ok = false;
           }
         }
@@ -193,7 +193,7 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
           for (HandBus& b : hand) {
             std::vector<std::uint32_t> with = b.boards;
             with.push_back(j);
-            if (fits(hand_load(kind, cycle_hz, limit, 0u, with), limit)) {
+            if (fits(handLoad(kind, cycle_hz, limit, 0u, with), limit)) {
               b.boards = with;
               placed = true;
               break;
@@ -213,8 +213,8 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
     PlannedBus p;
     p.arm_drives = b.drives;
     p.ft_sensors = b.ft;
-    p.utilisation_worst = arm_load(robot, kind, cycle_hz, limit, b.drives, b.ft);
-    p.content = arm_content(b.drives, b.ft);
+    p.utilisation_worst = armLoad(robot, kind, cycle_hz, limit, b.drives, b.ft);
+    p.content = armContent(b.drives, b.ft);
     plan.fullest = std::max(plan.fullest, p.utilisation_worst);
     plan.buses.push_back(p);
   }
@@ -226,8 +226,8 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
     for (std::uint32_t j : b.boards) {
       p.hand_joints += j;
     }
-    p.utilisation_worst = hand_load(kind, cycle_hz, limit, b.mit, b.boards);
-    p.content = hand_content(b);
+    p.utilisation_worst = handLoad(kind, cycle_hz, limit, b.mit, b.boards);
+    p.content = handContent(b);
     plan.fullest = std::max(plan.fullest, p.utilisation_worst);
     plan.buses.push_back(p);
   }
@@ -236,15 +236,15 @@ BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_
   return plan;
 }
 
-std::string budget_table_markdown(const RobotTraffic& robot, const std::vector<BusKind>& kinds,
-                                  const std::vector<double>& rates_hz, double limit) {
+std::string budgetTableMarkdown(const RobotTraffic& robot, const std::vector<BusKind>& kinds,
+                                const std::vector<double>& rates_hz, double limit) {
   std::string out =
       "| cycle | bus | max drives per bus | arm buses (drives + F/T: worst-case load) | hand buses "
       "(worst-case "
       "load) | buses |\n|---|---|---|---|---|---|\n";
   for (double hz : rates_hz) {
     for (const BusKind& kind : kinds) {
-      const BusPlan plan = plan_buses(robot, kind, hz, limit);
+      const BusPlan plan = planBuses(robot, kind, hz, limit);
       char rate[32];
       std::snprintf(rate, sizeof(rate), "%g Hz", hz);
       out += "| " + std::string(rate) + " | " + kind.label + " | ";
@@ -266,16 +266,16 @@ std::string budget_table_markdown(const RobotTraffic& robot, const std::vector<B
   return out;
 }
 
-std::string reference_budget_tables() {
+std::string referenceBudgetTables() {
   const std::vector<BusKind> kinds = {{"classic 1 Mbit/s", 1000000u, 0u},
                                       {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}};
   const std::vector<double> rates = {250.0, 500.0, 1000.0};
   RobotTraffic robot;
   std::string out = "With TPDO2 (velocity, error code and mode feedback every cycle):\n\n";
-  out += budget_table_markdown(robot, kinds, rates, 0.8);
+  out += budgetTableMarkdown(robot, kinds, rates, 0.8);
   robot.arm_tpdo2 = false;
   out += "\nWithout TPDO2 (statusword, position and torque only):\n\n";
-  out += budget_table_markdown(robot, kinds, rates, 0.8);
+  out += budgetTableMarkdown(robot, kinds, rates, 0.8);
   return out;
 }
 

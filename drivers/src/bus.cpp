@@ -5,7 +5,7 @@ namespace mrqp::drivers {
 
 Bus::~Bus() = default;
 
-const char* bus_state_str(BusState state) noexcept {
+const char* busStateStr(BusState state) noexcept {
   switch (state) {
     case BusState::ErrorActive:
       return "error active";

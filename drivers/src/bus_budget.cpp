@@ -18,7 +18,7 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
-std::string rate_str(std::uint32_t bps) {
+std::string rateStr(std::uint32_t bps) {
   if (bps % 1000000u == 0u) {
     return std::to_string(bps / 1000000u);
   }
@@ -28,7 +28,7 @@ std::string rate_str(std::uint32_t bps) {
   return fmt("%.3f", static_cast<double>(bps) / 1e6);
 }
 
-const char* format_str(FrameFormat f) {
+const char* formatStr(FrameFormat f) {
   switch (f) {
     case FrameFormat::Classic:
       return "classic";
@@ -40,7 +40,7 @@ const char* format_str(FrameFormat f) {
   return "?";
 }
 
-double frame_ns(mrqp_fw_frame_bits bits, std::uint32_t nominal, std::uint32_t data) {
+double frameNs(mrqp_fw_frame_bits bits, std::uint32_t nominal, std::uint32_t data) {
   double ns = static_cast<double>(bits.nominal_bits) * 1e9 / static_cast<double>(nominal);
   if (bits.data_bits > 0u) {
     ns += static_cast<double>(bits.data_bits) * 1e9 / static_cast<double>(data > 0u ? data : nominal);
@@ -48,7 +48,7 @@ double frame_ns(mrqp_fw_frame_bits bits, std::uint32_t nominal, std::uint32_t da
   return ns;
 }
 
-std::string bits_str(mrqp_fw_frame_bits b) {
+std::string bitsStr(mrqp_fw_frame_bits b) {
   if (b.data_bits == 0u) {
     return std::to_string(b.nominal_bits);
   }
@@ -57,11 +57,11 @@ std::string bits_str(mrqp_fw_frame_bits b) {
 
 }  // namespace
 
-std::string bus_spec_label(const BusSpec& spec) {
+std::string busSpecLabel(const BusSpec& spec) {
   if (spec.data_bps > 0u) {
-    return "CAN FD " + rate_str(spec.nominal_bps) + "/" + rate_str(spec.data_bps) + " Mbit/s";
+    return "CAN FD " + rateStr(spec.nominal_bps) + "/" + rateStr(spec.data_bps) + " Mbit/s";
   }
-  return "classic " + rate_str(spec.nominal_bps) + " Mbit/s";
+  return "classic " + rateStr(spec.nominal_bps) + " Mbit/s";
 }
 
 BusBudget::BusBudget(BusSpec spec) : spec_(std::move(spec)) {
@@ -105,20 +105,20 @@ void BusBudget::add(const std::string& label, std::uint32_t count, unsigned len,
     error_ = "'" + label + "': negative period";
   }
   line.len = static_cast<std::uint8_t>(len);
-  line.ns_min = frame_ns(line.bits_min, spec_.nominal_bps, spec_.data_bps);
-  line.ns_worst = frame_ns(line.bits_worst, spec_.nominal_bps, spec_.data_bps);
+  line.ns_min = frameNs(line.bits_min, spec_.nominal_bps, spec_.data_bps);
+  line.ns_worst = frameNs(line.bits_worst, spec_.nominal_bps, spec_.data_bps);
   const double cycle_s = spec_.cycle_hz > 0.0 ? 1.0 / spec_.cycle_hz : 0.0;
   line.per_cycle =
       period_s > 0.0 ? static_cast<double>(count) * cycle_s / period_s : static_cast<double>(count);
   lines_.push_back(line);
 }
 
-void BusBudget::add_cyclic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format) {
+void BusBudget::addCyclic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format) {
   add(label, count, len, format, 0.0);
 }
 
-void BusBudget::add_periodic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format,
-                             double period_s) {
+void BusBudget::addPeriodic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format,
+                            double period_s) {
   if (!(period_s > 0.0)) {
     error_ = "'" + label + "': the period must be > 0 s";
     period_s = 1.0;
@@ -126,34 +126,34 @@ void BusBudget::add_periodic(const std::string& label, std::uint32_t count, unsi
   add(label, count, len, format, period_s);
 }
 
-void BusBudget::add_sync() { add_cyclic("SYNC", 1, 0, FrameFormat::Classic); }
+void BusBudget::addSync() { addCyclic("SYNC", 1, 0, FrameFormat::Classic); }
 
-void BusBudget::add_arm_drives(std::uint32_t n, bool tpdo2) {
+void BusBudget::addArmDrives(std::uint32_t n, bool tpdo2) {
   if (n == 0u) {
     return;
   }
-  add_cyclic("arm RPDO1 (controlword, target)", n, 8, FrameFormat::Classic);
-  add_cyclic("arm TPDO1 (statusword, position, torque)", n, 8, FrameFormat::Classic);
+  addCyclic("arm RPDO1 (controlword, target)", n, 8, FrameFormat::Classic);
+  addCyclic("arm TPDO1 (statusword, position, torque)", n, 8, FrameFormat::Classic);
   if (tpdo2) {
-    add_cyclic("arm TPDO2 (velocity, error code, mode)", n, 7, FrameFormat::Classic);
+    addCyclic("arm TPDO2 (velocity, error code, mode)", n, 7, FrameFormat::Classic);
   }
 }
 
-void BusBudget::add_heartbeats(std::uint32_t n, double period_s) {
+void BusBudget::addHeartbeats(std::uint32_t n, double period_s) {
   if (n > 0u) {
-    add_periodic("heartbeat", n, 1, FrameFormat::Classic, period_s);
+    addPeriodic("heartbeat", n, 1, FrameFormat::Classic, period_s);
   }
 }
 
-void BusBudget::add_mit_motors(std::uint32_t n) {
+void BusBudget::addMitMotors(std::uint32_t n) {
   if (n == 0u) {
     return;
   }
-  add_cyclic("MIT command", n, 8, FrameFormat::Classic);
-  add_cyclic("MIT reply", n, 6, FrameFormat::Classic);
+  addCyclic("MIT command", n, 8, FrameFormat::Classic);
+  addCyclic("MIT reply", n, 6, FrameFormat::Classic);
 }
 
-void BusBudget::add_hand_board(std::uint32_t joints) {
+void BusBudget::addHandBoard(std::uint32_t joints) {
   if (joints > MRQP_FW_HAND_MAX_JOINTS) {
     error_ = "a hand board drives at most 32 joints, not " + std::to_string(joints);
     joints = MRQP_FW_HAND_MAX_JOINTS;
@@ -161,29 +161,29 @@ void BusBudget::add_hand_board(std::uint32_t joints) {
   std::uint32_t left = joints;
   do {
     const std::uint32_t n = left > MRQP_FW_HAND_FD_MAX_JOINTS ? MRQP_FW_HAND_FD_MAX_JOINTS : left;
-    add_cyclic("hand FD command (" + std::to_string(n) + " joints)", 1, mrqp_fw_hand_cmd_len(n),
-               FrameFormat::FdBrs);
-    add_cyclic("hand FD feedback (" + std::to_string(n) + " joints)", 1, mrqp_fw_hand_fb_len(n),
-               FrameFormat::FdBrs);
+    addCyclic("hand FD command (" + std::to_string(n) + " joints)", 1, mrqp_fw_hand_cmd_len(n),
+              FrameFormat::FdBrs);
+    addCyclic("hand FD feedback (" + std::to_string(n) + " joints)", 1, mrqp_fw_hand_fb_len(n),
+              FrameFormat::FdBrs);
     left -= n;
   } while (left > 0u);
 }
 
-void BusBudget::add_ft_classic(std::uint32_t n) {
+void BusBudget::addFtClassic(std::uint32_t n) {
   if (n > 0u) {
-    add_cyclic("F/T forces + moments", 2u * n, 8, FrameFormat::Classic);
+    addCyclic("F/T forces + moments", 2u * n, 8, FrameFormat::Classic);
   }
 }
 
-void BusBudget::add_ft_fd(std::uint32_t n) {
+void BusBudget::addFtFd(std::uint32_t n) {
   if (n > 0u) {
-    add_cyclic("F/T FD frame", n, 32, FrameFormat::FdBrs);
+    addCyclic("F/T FD frame", n, 32, FrameFormat::FdBrs);
   }
 }
 
-void BusBudget::add_imu_fd(std::uint32_t n) {
+void BusBudget::addImuFd(std::uint32_t n) {
   if (n > 0u) {
-    add_cyclic("IMU FD frame", n, MRQP_FW_IMU_FD_LEN, FrameFormat::FdBrs);
+    addCyclic("IMU FD frame", n, MRQP_FW_IMU_FD_LEN, FrameFormat::FdBrs);
   }
 }
 
@@ -219,7 +219,7 @@ BudgetResult BusBudget::result() const {
 bool BusBudget::check(std::string* message) const {
   const BudgetResult r = result();
   const std::string head =
-      "bus '" + spec_.name + "' (" + bus_spec_label(spec_) + ", " + fmt("%g", spec_.cycle_hz) + " Hz)";
+      "bus '" + spec_.name + "' (" + busSpecLabel(spec_) + ", " + fmt("%g", spec_.cycle_hz) + " Hz)";
   if (!r.valid) {
     if (message != nullptr) {
       *message = head + ": invalid budget: " + r.error;
@@ -249,7 +249,7 @@ bool BusBudget::check(std::string* message) const {
 
 std::string BusBudget::report() const {
   const BudgetResult r = result();
-  std::string out = "bus '" + spec_.name + "': " + bus_spec_label(spec_) + ", " + fmt("%g", spec_.cycle_hz) +
+  std::string out = "bus '" + spec_.name + "': " + busSpecLabel(spec_) + ", " + fmt("%g", spec_.cycle_hz) +
                     " Hz (cycle " + fmt("%.1f", r.cycle_ns / 1e3) + " us), limit " +
                     fmt("%.1f", 100.0 * spec_.limit) + " % (worst-case stuffing)\n";
   for (const BudgetLine& l : lines_) {
@@ -257,8 +257,8 @@ std::string BusBudget::report() const {
     std::snprintf(
         line, sizeof(line), "  %-44s %7.2f x %2u B %-7s %7s..%-7s bits %6.1f..%6.1f us/frame\n",
         (l.label + (l.period_s > 0.0 ? " (every " + fmt("%g", l.period_s * 1e3) + " ms)" : "")).c_str(),
-        l.per_cycle, static_cast<unsigned>(l.len), format_str(l.format), bits_str(l.bits_min).c_str(),
-        bits_str(l.bits_worst).c_str(), l.ns_min / 1e3, l.ns_worst / 1e3);
+        l.per_cycle, static_cast<unsigned>(l.len), formatStr(l.format), bitsStr(l.bits_min).c_str(),
+        bitsStr(l.bits_worst).c_str(), l.ns_min / 1e3, l.ns_worst / 1e3);
     out += line;
   }
   char total[256];

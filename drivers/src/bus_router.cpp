@@ -3,7 +3,7 @@
 
 namespace mrqp::drivers {
 
-bool BusRouter::add_handler(FrameHandler& handler) noexcept {
+bool BusRouter::addHandler(FrameHandler& handler) noexcept {
   for (std::size_t i = 0; i < handler_count_; ++i) {
     if (handlers_[i] == &handler) {
       return false;
@@ -16,7 +16,7 @@ bool BusRouter::add_handler(FrameHandler& handler) noexcept {
   return true;
 }
 
-void BusRouter::remove_handler(FrameHandler& handler) noexcept {
+void BusRouter::removeHandler(FrameHandler& handler) noexcept {
   std::size_t out = 0;
   for (std::size_t i = 0; i < handler_count_; ++i) {
     if (handlers_[i] != &handler) {
@@ -51,14 +51,14 @@ std::size_t BusRouter::poll(TimeNs now) noexcept {
     if (rx.own) {
       ++stats_.echoes;
       for (std::size_t i = 0; i < handler_count_; ++i) {
-        handlers_[i]->on_own_frame(*this, rx, now);
+        handlers_[i]->onOwnFrame(*this, rx, now);
       }
       continue;
     }
     ++stats_.frames;
     Claim claim = Claim::NotMine;
     for (std::size_t i = 0; i < handler_count_ && claim == Claim::NotMine; ++i) {
-      claim = handlers_[i]->on_frame(*this, rx, now);
+      claim = handlers_[i]->onFrame(*this, rx, now);
     }
     switch (claim) {
       case Claim::NotMine:

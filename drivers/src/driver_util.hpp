@@ -9,13 +9,13 @@
 namespace mrqp::drivers::detail {
 
 /// Reception time of a frame: its timestamp when it has one that is not in the future, else now.
-inline TimeNs rx_time(const RxFrame& rx, TimeNs now) noexcept {
+inline TimeNs rxTime(const RxFrame& rx, TimeNs now) noexcept {
   return rx.has_timestamp && rx.timestamp <= now ? rx.timestamp : now;
 }
 
 /// Finite test on the bit pattern (immune to -ffast-math).
 inline bool finite(double x) noexcept { return mrqp_fw_isfinite_d(x) != 0; }
-inline bool finite_f(float x) noexcept { return mrqp_fw_isfinite_f(x) != 0; }
+inline bool finiteF(float x) noexcept { return mrqp_fw_isfinite_f(x) != 0; }
 
 /// Clamps x into [lo, hi]; sets *limited when it had to.
 inline double clamp(double x, double lo, double hi, bool* limited) noexcept {

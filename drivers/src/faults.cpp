@@ -5,7 +5,7 @@
 
 namespace mrqp::drivers {
 
-const char* fault_flag_name(std::uint32_t flag) noexcept {
+const char* faultFlagName(std::uint32_t flag) noexcept {
   switch (flag) {
     case fault::kHeartbeatLost:
       return "heartbeat lost";
@@ -54,58 +54,58 @@ const char* fault_flag_name(std::uint32_t flag) noexcept {
   }
 }
 
-std::string fault_flags_str(std::uint32_t flags) {
+std::string faultFlagsStr(std::uint32_t flags) {
   std::string out;
   for (std::uint32_t bit = 1; bit != 0u && bit <= fault::kLast; bit <<= 1) {
     if ((flags & bit) != 0u) {
       if (!out.empty()) {
         out += ", ";
       }
-      out += fault_flag_name(bit);
+      out += faultFlagName(bit);
     }
   }
   return out;
 }
 
-std::string describe_device_faults(const DeviceFaults& d) {
-  std::string out = fault_flags_str(d.flags);
+std::string describeDeviceFaults(const DeviceFaults& d) {
+  std::string out = faultFlagsStr(d.flags);
   if (d.node != 0u) {
     out += " (node " + std::to_string(d.node) + ")";
   }
   if ((d.flags & fault::kEmcy) != 0u) {
-    out += "; " + describe_emcy(d.emcy_code, d.emcy_register, d.node);
+    out += "; " + describeEmcy(d.emcy_code, d.emcy_register, d.node);
   }
   if ((d.flags & fault::kFeedbackMissing) != 0u) {
     out += "; no feedback for " + std::to_string(d.missed_cycles) + " cycles";
   }
   if ((d.flags & fault::kStateMismatch) != 0u && d.node != 0u) {
-    out += "; NMT state " + std::string(nmt_state_str(d.nmt_state));
+    out += "; NMT state " + std::string(nmtStateStr(d.nmt_state));
   }
   if (d.sdo_abort_code != 0u) {
-    out += "; " + describe_sdo_abort(d.sdo_abort_code, d.sdo_index, d.sdo_subindex, d.node);
+    out += "; " + describeSdoAbort(d.sdo_abort_code, d.sdo_index, d.sdo_subindex, d.node);
   }
   if (d.sdo_check_failed) {
-    out += "; " + describe_check_mismatch(d.sdo_index, d.sdo_subindex, d.node, d.sdo_check_expected,
-                                          d.sdo_check_actual, d.sdo_check_mask);
+    out += "; " + describeCheckMismatch(d.sdo_index, d.sdo_subindex, d.node, d.sdo_check_expected,
+                                        d.sdo_check_actual, d.sdo_check_mask);
   }
   return out;
 }
 
-std::string describe_faults(const FaultReport& report, const char* what) {
+std::string describeFaults(const FaultReport& report, const char* what) {
   std::string out;
   for (std::size_t i = 0; i < report.device_count; ++i) {
     const DeviceFaults& d = report.devices[i];
     if (d.flags == 0u) {
       continue;
     }
-    out += std::string(what) + " " + std::to_string(i) + ": " + describe_device_faults(d) + "\n";
+    out += std::string(what) + " " + std::to_string(i) + ": " + describeDeviceFaults(d) + "\n";
   }
   for (std::size_t i = 0; i < report.bus_count; ++i) {
     const BusFaults& b = report.buses[i];
     if (b.flags == 0u) {
       continue;
     }
-    out += "bus " + std::to_string(i) + ": " + fault_flags_str(b.flags) + " (" + bus_state_str(b.state) +
+    out += "bus " + std::to_string(i) + ": " + faultFlagsStr(b.flags) + " (" + busStateStr(b.state) +
            ", TEC " + std::to_string(b.tec) + ", REC " + std::to_string(b.rec) + ")\n";
   }
   return out;

@@ -5,7 +5,7 @@
 
 namespace mrqp::drivers {
 
-void FdHandDriver::request_enable(TimeNs now) noexcept {
+void FdHandDriver::requestEnable(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = config_.enabled_mode;
     b.mode_since = now;
@@ -14,7 +14,7 @@ void FdHandDriver::request_enable(TimeNs now) noexcept {
   }
 }
 
-void FdHandDriver::request_disable(TimeNs now) noexcept {
+void FdHandDriver::requestDisable(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = MRQP_FW_HAND_MODE_DISABLED;
     b.mode_since = now;
@@ -23,7 +23,7 @@ void FdHandDriver::request_disable(TimeNs now) noexcept {
   }
 }
 
-void FdHandDriver::request_quick_stop(TimeNs now) noexcept {
+void FdHandDriver::requestQuickStop(TimeNs now) noexcept {
   for (Board& b : boards_) {
     b.mode_requested = MRQP_FW_HAND_MODE_HOLD;
     b.mode_since = now;
@@ -45,19 +45,19 @@ bool FdHandDriver::locate(std::size_t flat, std::size_t* board, std::size_t* joi
   return false;
 }
 
-JointMode FdHandDriver::joint_mode(std::size_t) const noexcept {
+JointMode FdHandDriver::jointMode(std::size_t) const noexcept {
   return config_.enabled_mode == MRQP_FW_HAND_MODE_TORQUE ? JointMode::Torque : JointMode::Position;
 }
 
-SetpointResult FdHandDriver::set_joint(std::size_t flat, const JointCommand& c) noexcept {
+SetpointResult FdHandDriver::setJoint(std::size_t flat, const JointCommand& c) noexcept {
   std::size_t board = 0;
   std::size_t j = 0;
   if (!locate(flat, &board, &j)) {
     return SetpointResult::BadIndex;
   }
   // A double outside float's range becomes an infinite float, refused like any non-finite value.
-  return set_joint(board, j, static_cast<float>(c.position), static_cast<float>(c.velocity),
-                   static_cast<float>(c.torque));
+  return setJoint(board, j, static_cast<float>(c.position), static_cast<float>(c.velocity),
+                  static_cast<float>(c.torque));
 }
 
 JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept {
@@ -77,7 +77,7 @@ JointFeedback FdHandDriver::joint(std::size_t flat) const noexcept {
   return out;
 }
 
-bool FdHandDriver::all_enabled() const noexcept {
+bool FdHandDriver::allEnabled() const noexcept {
   for (const Board& b : boards_) {
     if (!b.state.enabled) {
       return false;
@@ -86,13 +86,13 @@ bool FdHandDriver::all_enabled() const noexcept {
   return !boards_.empty();
 }
 
-SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, float position, float velocity,
-                                       float torque) noexcept {
+SetpointResult FdHandDriver::setJoint(std::size_t board, std::size_t joint, float position, float velocity,
+                                      float torque) noexcept {
   if (board >= boards_.size() || joint >= boards_[board].cfg.joints) {
     return SetpointResult::BadIndex;
   }
   Board& b = boards_[board];
-  if (!detail::finite_f(position) || !detail::finite_f(velocity) || !detail::finite_f(torque)) {
+  if (!detail::finiteF(position) || !detail::finiteF(velocity) || !detail::finiteF(torque)) {
     ++b.faults.refused_setpoints;
     b.events |= fault::kSetpointRefused;
     return SetpointResult::Refused;
@@ -117,7 +117,7 @@ SetpointResult FdHandDriver::set_joint(std::size_t board, std::size_t joint, flo
 }
 
 const FaultReport& FdHandDriver::update(TimeNs now) noexcept {
-  routers_.start_cycle();
+  routers_.startCycle();
   for (std::size_t i = 0; i < boards_.size(); ++i) {
     Board& b = boards_[i];
     std::uint32_t flags = b.events;
@@ -222,8 +222,8 @@ std::size_t FdHandDriver::transmit(TimeNs) noexcept {
   return count;
 }
 
-Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+Claim FdHandDriver::onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u || f.id < MRQP_FW_HAND_FD_FB_ID_BASE ||
       f.id > MRQP_FW_HAND_FD_FB_ID_BASE + MRQP_FW_HAND_BOARD_MAX) {
@@ -255,7 +255,7 @@ Claim FdHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs no
   s.seq_echo = fb.cmd_seq_echo;
   s.mode = fb.mode;
   s.status = fb.status;
-  s.timestamp = detail::rx_time(rx, now);
+  s.timestamp = detail::rxTime(rx, now);
   for (std::uint32_t j = 0; j < fb.count; ++j) {
     HandJointState& js = b.joints[fb.first_joint + j];
     js.position = fb.joint[j].position;

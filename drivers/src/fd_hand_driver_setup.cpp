@@ -12,7 +12,7 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
     }
     return std::unique_ptr<FdHandDriver>();
   };
-  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+  if (const std::string why = detail::checkRouters(buses); !why.empty()) {
     return fail(why);
   }
   if (config.boards.empty()) {
@@ -32,7 +32,7 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
       return fail(who + ": bus index " + std::to_string(b.bus) + " but only " + std::to_string(buses.size()) +
                   " bus(es) given");
     }
-    if (!buses[b.bus]->bus().fd_enabled()) {
+    if (!buses[b.bus]->bus().fdEnabled()) {
       return fail(who + ": bus " + std::to_string(b.bus) + " (" + buses[b.bus]->bus().name() +
                   ") is not CAN FD enabled");
     }
@@ -70,10 +70,10 @@ std::unique_ptr<FdHandDriver> FdHandDriver::create(const std::vector<BusRouter*>
   return p;
 }
 
-void FdHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
+void FdHandDriver::declareTraffic(std::size_t bus, BusBudget& budget) const {
   for (const Board& b : boards_) {
     if (b.cfg.bus == bus) {
-      budget.add_hand_board(b.cfg.joints);
+      budget.addHandBoard(b.cfg.joints);
     }
   }
 }

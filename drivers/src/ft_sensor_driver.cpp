@@ -40,7 +40,7 @@ WrenchFeedback FtSensorDriver::wrench(std::size_t i) const noexcept {
   return out;
 }
 
-bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept {
+bool FtSensorDriver::requestTare(std::size_t i, bool tare, TimeNs now) noexcept {
   if (i >= sensors_.size()) {
     return false;
   }
@@ -52,7 +52,7 @@ bool FtSensorDriver::request_tare(std::size_t i, bool tare, TimeNs now) noexcept
   return true;
 }
 
-void FtSensorDriver::publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept {
+void FtSensorDriver::publishSample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept {
   FtSensorState& st = s.state;
   if (s.seq_valid) {
     const std::uint8_t expected = static_cast<std::uint8_t>(st.seq + 1u);
@@ -83,7 +83,7 @@ void FtSensorDriver::publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, 
   }
 }
 
-Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept {
+Claim FtSensorDriver::onHalf(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept {
   mrqp_fw_ft_half h;
   if (mrqp_fw_ft_unpack_half(&s.cfg.scale, &f, s.cfg.node, &h) != MRQP_FW_OK) {
     ++s.faults.corrupt_frames;
@@ -110,7 +110,7 @@ Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexc
   if (e == MRQP_FW_OK) {
     s.forces.present = false;
     s.moments.present = false;
-    publish_sample(s, sample, t);
+    publishSample(s, sample, t);
     return Claim::Accepted;
   }
   // Torn: drop the older half, keep the newer one waiting for its partner.
@@ -120,8 +120,8 @@ Claim FtSensorDriver::on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexc
   return Claim::Accepted;
 }
 
-Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+Claim FtSensorDriver::onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;
@@ -136,9 +136,9 @@ Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs 
     return Claim::NotMine;
   }
   Sensor& s = sensors_[static_cast<std::size_t>(index)];
-  const TimeNs t = detail::rx_time(rx, now);
+  const TimeNs t = detail::rxTime(rx, now);
   if (s.cfg.variant == FtVariant::Classic) {
-    return on_half(s, f, t);
+    return onHalf(s, f, t);
   }
   mrqp_fw_ft_sample sample;
   if (kind != MRQP_FW_COB_KIND_TPDO1 ||
@@ -147,12 +147,12 @@ Claim FtSensorDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs 
     s.events |= fault::kCorruptFrame;
     return Claim::Rejected;
   }
-  publish_sample(s, sample, t);
+  publishSample(s, sample, t);
   return Claim::Accepted;
 }
 
 const FaultReport& FtSensorDriver::update(TimeNs now) noexcept {
-  routers_.start_cycle();
+  routers_.startCycle();
   for (std::size_t i = 0; i < sensors_.size(); ++i) {
     Sensor& s = sensors_[i];
     std::uint32_t flags = s.events;

@@ -12,7 +12,7 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
     }
     return std::unique_ptr<FtSensorDriver>();
   };
-  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+  if (const std::string why = detail::checkRouters(buses); !why.empty()) {
     return fail(why);
   }
   if (config.sensors.empty()) {
@@ -39,7 +39,7 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
     if (mrqp_fw_ft_scale_valid(&s.scale) == 0) {
       return fail(who + ": invalid scale (counts per unit finite and > 0)");
     }
-    if (s.variant == FtVariant::Fd && !buses[s.bus]->bus().fd_enabled()) {
+    if (s.variant == FtVariant::Fd && !buses[s.bus]->bus().fdEnabled()) {
       return fail(who + ": FD variant on bus " + std::to_string(s.bus) + " (" + buses[s.bus]->bus().name() +
                   ") which is not CAN FD enabled");
     }
@@ -65,7 +65,7 @@ std::unique_ptr<FtSensorDriver> FtSensorDriver::create(const std::vector<BusRout
   return p;
 }
 
-void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
+void FtSensorDriver::declareTraffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t classic = 0;
   std::uint32_t fd = 0;
   for (const Sensor& s : sensors_) {
@@ -74,10 +74,10 @@ void FtSensorDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
     }
   }
   if (config_.produce_sync && classic + fd > 0u) {
-    budget.add_sync();
+    budget.addSync();
   }
-  budget.add_ft_classic(classic);
-  budget.add_ft_fd(fd);
+  budget.addFtClassic(classic);
+  budget.addFtFd(fd);
 }
 
 }  // namespace mrqp::drivers

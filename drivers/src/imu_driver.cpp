@@ -42,8 +42,8 @@ ImuFeedback ImuDriver::imu(std::size_t i) const noexcept {
   return out;
 }
 
-Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+Claim ImuDriver::onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;
@@ -83,7 +83,7 @@ Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
   st.seq = sample.seq;
   st.status = sample.status;
   st.valid = true;
-  st.timestamp = detail::rx_time(rx, now);
+  st.timestamp = detail::rxTime(rx, now);
   if ((sample.status & MRQP_FW_IMU_STATUS_ALIGNING) == 0u) {
     st.aligned = true;
   }
@@ -105,7 +105,7 @@ Claim ImuDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) 
 }
 
 const FaultReport& ImuDriver::update(TimeNs) noexcept {
-  routers_.start_cycle();
+  routers_.startCycle();
   for (std::size_t i = 0; i < imus_.size(); ++i) {
     Imu& m = imus_[i];
     std::uint32_t flags = m.events;

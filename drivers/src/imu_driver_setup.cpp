@@ -12,7 +12,7 @@ std::unique_ptr<ImuDriver> ImuDriver::create(const std::vector<BusRouter*>& buse
     }
     return std::unique_ptr<ImuDriver>();
   };
-  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+  if (const std::string why = detail::checkRouters(buses); !why.empty()) {
     return fail(why);
   }
   if (config.imus.empty()) {
@@ -39,7 +39,7 @@ std::unique_ptr<ImuDriver> ImuDriver::create(const std::vector<BusRouter*>& buse
     if (mrqp_fw_imu_scale_valid(&s.scale) == 0) {
       return fail(who + ": invalid scale (counts per unit finite and > 0)");
     }
-    if (!buses[s.bus]->bus().fd_enabled()) {
+    if (!buses[s.bus]->bus().fdEnabled()) {
       return fail(who + ": bus " + std::to_string(s.bus) + " (" + buses[s.bus]->bus().name() +
                   ") is not CAN FD enabled (the IMU frame is CAN FD)");
     }
@@ -65,15 +65,15 @@ std::unique_ptr<ImuDriver> ImuDriver::create(const std::vector<BusRouter*>& buse
   return p;
 }
 
-void ImuDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
+void ImuDriver::declareTraffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Imu& m : imus_) {
     n += m.cfg.bus == bus ? 1u : 0u;
   }
   if (config_.produce_sync && n > 0u) {
-    budget.add_sync();
+    budget.addSync();
   }
-  budget.add_imu_fd(n);
+  budget.addImuFd(n);
 }
 
 }  // namespace mrqp::drivers

@@ -5,7 +5,7 @@
 
 namespace mrqp::drivers {
 
-void MitHandDriver::request_enable(TimeNs now) noexcept {
+void MitHandDriver::requestEnable(TimeNs now) noexcept {
   quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::On) {
@@ -17,7 +17,7 @@ void MitHandDriver::request_enable(TimeNs now) noexcept {
   }
 }
 
-void MitHandDriver::request_disable(TimeNs now) noexcept {
+void MitHandDriver::requestDisable(TimeNs now) noexcept {
   quick_stop_ = false;
   for (Motor& m : motors_) {
     if (m.state.mode != MitMode::Off) {
@@ -29,7 +29,7 @@ void MitHandDriver::request_disable(TimeNs now) noexcept {
   }
 }
 
-void MitHandDriver::request_quick_stop(TimeNs) noexcept {
+void MitHandDriver::requestQuickStop(TimeNs) noexcept {
   quick_stop_ = true;
   for (Motor& m : motors_) {
     m.sp = mrqp_fw_mit_cmd{};
@@ -39,7 +39,7 @@ void MitHandDriver::request_quick_stop(TimeNs) noexcept {
   }
 }
 
-SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) noexcept {
+SetpointResult MitHandDriver::setJoint(std::size_t i, const JointCommand& c) noexcept {
   if (i >= motors_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -50,7 +50,7 @@ SetpointResult MitHandDriver::set_joint(std::size_t i, const JointCommand& c) no
   cmd.kp = c.stiffness < 0.0 ? cfg.default_kp : static_cast<float>(c.stiffness);
   cmd.kd = c.damping < 0.0 ? cfg.default_kd : static_cast<float>(c.damping);
   cmd.t = static_cast<float>(c.torque);
-  return set_command(i, cmd);
+  return setCommand(i, cmd);
 }
 
 JointFeedback MitHandDriver::joint(std::size_t i) const noexcept {
@@ -68,7 +68,7 @@ JointFeedback MitHandDriver::joint(std::size_t i) const noexcept {
   return out;
 }
 
-bool MitHandDriver::all_on() const noexcept {
+bool MitHandDriver::allOn() const noexcept {
   for (const Motor& m : motors_) {
     if (m.state.mode != MitMode::On) {
       return false;
@@ -77,7 +77,7 @@ bool MitHandDriver::all_on() const noexcept {
   return !motors_.empty();
 }
 
-bool MitHandDriver::all_off() const noexcept {
+bool MitHandDriver::allOff() const noexcept {
   for (const Motor& m : motors_) {
     if (m.state.mode != MitMode::Off) {
       return false;
@@ -86,7 +86,7 @@ bool MitHandDriver::all_off() const noexcept {
   return !motors_.empty();
 }
 
-SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& cmd) noexcept {
+SetpointResult MitHandDriver::setCommand(std::size_t i, const mrqp_fw_mit_cmd& cmd) noexcept {
   if (i >= motors_.size()) {
     return SetpointResult::BadIndex;
   }
@@ -94,8 +94,8 @@ SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& 
   if (quick_stop_) {
     return SetpointResult::Ok;  // held with damping until the next enable / disable request
   }
-  if (!detail::finite_f(cmd.p) || !detail::finite_f(cmd.v) || !detail::finite_f(cmd.kp) ||
-      !detail::finite_f(cmd.kd) || !detail::finite_f(cmd.t)) {
+  if (!detail::finiteF(cmd.p) || !detail::finiteF(cmd.v) || !detail::finiteF(cmd.kp) ||
+      !detail::finiteF(cmd.kd) || !detail::finiteF(cmd.t)) {
     ++m.faults.refused_setpoints;
     m.events |= fault::kSetpointRefused;
     return SetpointResult::Refused;
@@ -120,7 +120,7 @@ SetpointResult MitHandDriver::set_command(std::size_t i, const mrqp_fw_mit_cmd& 
 }
 
 const FaultReport& MitHandDriver::update(TimeNs now) noexcept {
-  routers_.start_cycle();
+  routers_.startCycle();
   for (std::size_t i = 0; i < motors_.size(); ++i) {
     Motor& m = motors_[i];
     std::uint32_t flags = m.events;
@@ -208,8 +208,8 @@ std::size_t MitHandDriver::transmit(TimeNs) noexcept {
   return count;
 }
 
-Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
-  const int slot = routers_.slot_of(from);
+Claim MitHandDriver::onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  const int slot = routers_.slotOf(from);
   const mrqp_fw_frame& f = rx.frame;
   if (slot < 0 || f.id != MRQP_FW_MIT_MASTER_ID || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return Claim::NotMine;
@@ -235,7 +235,7 @@ Claim MitHandDriver::on_frame(const BusRouter& from, const RxFrame& rx, TimeNs n
   s.velocity = reply.v;
   s.torque = reply.t;
   s.valid = true;
-  s.timestamp = detail::rx_time(rx, now);
+  s.timestamp = detail::rxTime(rx, now);
   m.replied = true;
   // A value at the end of its wire range may be saturated; outside the limits is out of range.
   const mrqp_fw_mit_ranges& r = m.cfg.ranges;

@@ -14,7 +14,7 @@ std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter
     }
     return std::unique_ptr<MitHandDriver>();
   };
-  if (const std::string why = detail::check_routers(buses); !why.empty()) {
+  if (const std::string why = detail::checkRouters(buses); !why.empty()) {
     return fail(why);
   }
   if (config.motors.empty()) {
@@ -62,12 +62,12 @@ std::unique_ptr<MitHandDriver> MitHandDriver::create(const std::vector<BusRouter
   return p;
 }
 
-void MitHandDriver::declare_traffic(std::size_t bus, BusBudget& budget) const {
+void MitHandDriver::declareTraffic(std::size_t bus, BusBudget& budget) const {
   std::uint32_t n = 0;
   for (const Motor& m : motors_) {
     n += m.cfg.bus == bus ? 1u : 0u;
   }
-  budget.add_mit_motors(n);
+  budget.addMitMotors(n);
 }
 
 }  // namespace mrqp::drivers

@@ -3,7 +3,7 @@
 
 namespace mrqp::drivers {
 
-int RouterAttachment::slot_of(const BusRouter& router) const noexcept {
+int RouterAttachment::slotOf(const BusRouter& router) const noexcept {
   for (std::size_t i = 0; i < routers_.size(); ++i) {
     if (routers_[i] == &router) {
       return static_cast<int>(i);
@@ -12,7 +12,7 @@ int RouterAttachment::slot_of(const BusRouter& router) const noexcept {
   return -1;
 }
 
-void RouterAttachment::start_cycle() noexcept {
+void RouterAttachment::startCycle() noexcept {
   ++report_.cycle;
   for (std::size_t s = 0; s < routers_.size(); ++s) {
     bus_faults_[s] = health_[s].update(*routers_[s]);

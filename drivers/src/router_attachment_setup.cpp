@@ -14,9 +14,9 @@ std::string RouterAttachment::attach(const std::vector<BusRouter*>& routers, Fra
       duplicate = duplicate || routers[k] == routers[s];
     }
     // A router refuses a handler it already has: a bus given twice is named as such.
-    if (duplicate || !routers[s]->add_handler(handler)) {
+    if (duplicate || !routers[s]->addHandler(handler)) {
       for (std::size_t k = 0; k < s; ++k) {
-        routers[k]->remove_handler(handler);
+        routers[k]->removeHandler(handler);
       }
       return "bus " + std::to_string(s) +
              (duplicate ? " given twice" : ": the router's handler table is full");
@@ -37,7 +37,7 @@ RouterAttachment::~RouterAttachment() {
     return;
   }
   for (BusRouter* r : routers_) {
-    r->remove_handler(*handler_);
+    r->removeHandler(*handler_);
   }
 }
 

@@ -11,7 +11,7 @@ namespace mrqp::drivers::detail {
 
 /// Why a driver cannot use this list of routers ("no bus given", "bus 2 is null", "bus 1 given
 /// twice"), or an empty string when it can.
-inline std::string check_routers(const std::vector<BusRouter*>& buses) {
+inline std::string checkRouters(const std::vector<BusRouter*>& buses) {
   if (buses.empty()) {
     return "no bus given";
   }

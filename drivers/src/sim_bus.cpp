@@ -22,7 +22,7 @@ constexpr std::uint32_t kSuspendBits = 8;
 constexpr std::uint32_t kNoAckExtraBits = 6;
 constexpr std::uint32_t kErrorExtraBits = 4;
 
-BusState state_of(std::uint32_t tec, std::uint32_t rec) noexcept {
+BusState stateOf(std::uint32_t tec, std::uint32_t rec) noexcept {
   if (tec > kBusOffLimit) {
     return BusState::BusOff;
   }
@@ -35,7 +35,7 @@ BusState state_of(std::uint32_t tec, std::uint32_t rec) noexcept {
   return BusState::ErrorActive;
 }
 
-std::uint32_t state_flag(BusState s) noexcept {
+std::uint32_t stateFlag(BusState s) noexcept {
   switch (s) {
     case BusState::ErrorActive:
       return bus_error::kActive;
@@ -49,7 +49,7 @@ std::uint32_t state_flag(BusState s) noexcept {
   return 0;
 }
 
-bool same_content(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept {
+bool sameContent(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept {
   if (a.id != b.id || a.len != b.len || a.flags != b.flags) {
     return false;
   }
@@ -61,13 +61,13 @@ bool same_content(const mrqp_fw_frame& a, const mrqp_fw_frame& b) noexcept {
   return true;
 }
 
-std::uint64_t arbitration_key(const mrqp_fw_frame& f) noexcept {
+std::uint64_t arbitrationKey(const mrqp_fw_frame& f) noexcept {
   return (static_cast<std::uint64_t>(f.id) << 1) | ((f.flags & MRQP_FW_FRAME_FD) != 0u ? 1u : 0u);
 }
 
 }  // namespace
 
-const char* wire_outcome_str(WireOutcome outcome) noexcept {
+const char* wireOutcomeStr(WireOutcome outcome) noexcept {
   switch (outcome) {
     case WireOutcome::Delivered:
       return "delivered";
@@ -81,13 +81,13 @@ const char* wire_outcome_str(WireOutcome outcome) noexcept {
   return "unknown";
 }
 
-void SimListener::on_transmitted(SimNode&, const mrqp_fw_frame&, TimeNs) noexcept {}
-void SimListener::on_timer(SimNode&, TimeNs) noexcept {}
+void SimListener::onTransmitted(SimNode&, const mrqp_fw_frame&, TimeNs) noexcept {}
+void SimListener::onTimer(SimNode&, TimeNs) noexcept {}
 
 // ---------------------------------------------------------------------------------------------
 // SimNode
 
-bool SimNode::frame_valid(const mrqp_fw_frame& f) const noexcept {
+bool SimNode::frameValid(const mrqp_fw_frame& f) const noexcept {
   if ((f.flags & (MRQP_FW_FRAME_EXT | MRQP_FW_FRAME_RTR)) != 0u || f.id > MRQP_FW_CAN_SFF_MAX) {
     return false;
   }
@@ -97,9 +97,9 @@ bool SimNode::frame_valid(const mrqp_fw_frame& f) const noexcept {
   return f.len <= MRQP_FW_CAN_CLASSIC_MAX_LEN && (f.flags & MRQP_FW_FRAME_BRS) == 0u;
 }
 
-SendResult SimNode::send(const mrqp_fw_frame& frame) noexcept { return send_at(frame, bus_->now_); }
+SendResult SimNode::send(const mrqp_fw_frame& frame) noexcept { return sendAt(frame, bus_->now_); }
 
-SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept {
+SendResult SimNode::sendAt(const mrqp_fw_frame& frame, TimeNs ready) noexcept {
   if (!connected_) {
     ++counters_.tx_failed;
     return SendResult::Down;
@@ -108,7 +108,7 @@ SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept {
     ++counters_.tx_failed;
     return SendResult::BusOff;
   }
-  if (!frame_valid(frame)) {
+  if (!frameValid(frame)) {
     ++counters_.tx_failed;
     return SendResult::Invalid;
   }
@@ -132,19 +132,19 @@ SendResult SimNode::send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept {
   return SendResult::Ok;
 }
 
-void SimNode::tx_pop() noexcept {
+void SimNode::txPop() noexcept {
   if (tx_count_ > 0) {
     tx_head_ = (tx_head_ + 1) % tx_.size();
     --tx_count_;
   }
 }
 
-void SimNode::cancel_pending() noexcept {
+void SimNode::cancelPending() noexcept {
   tx_head_ = 0;
   tx_count_ = 0;
 }
 
-void SimNode::tx_flush() noexcept {
+void SimNode::txFlush() noexcept {
   counters_.tx_failed += tx_count_;
   tx_head_ = 0;
   tx_count_ = 0;
@@ -170,17 +170,17 @@ BusStatus SimNode::status() const noexcept {
   return s;
 }
 
-bool SimNode::fd_enabled() const noexcept { return config_.fd && bus_->config_.data_bps > 0u; }
+bool SimNode::fdEnabled() const noexcept { return config_.fd && bus_->config_.data_bps > 0u; }
 
 const char* SimNode::name() const noexcept { return config_.name != nullptr ? config_.name : "sim node"; }
 
-void SimNode::set_connected(bool connected) noexcept {
+void SimNode::setConnected(bool connected) noexcept {
   if (connected == connected_) {
     return;
   }
   connected_ = connected;
   timer_at_ = kNoTimer;
-  tx_flush();
+  txFlush();
   rx_head_ = 0;
   rx_count_ = 0;
   tec_ = 0;
@@ -198,7 +198,7 @@ void SimNode::deliver(ReceiveResult kind, const RxFrame& rx) noexcept {
     ++counters_.error_events;
   }
   if (listener_ != nullptr) {
-    listener_->on_receive(*this, kind, rx);
+    listener_->onReceive(*this, kind, rx);
     return;
   }
   if (rx_count_ == rx_.size()) {
@@ -211,7 +211,7 @@ void SimNode::deliver(ReceiveResult kind, const RxFrame& rx) noexcept {
   ++rx_count_;
 }
 
-void SimNode::emit_error(std::uint32_t flags, TimeNs when) noexcept {
+void SimNode::emitError(std::uint32_t flags, TimeNs when) noexcept {
   if (!config_.error_events || flags == 0u) {
     return;
   }
@@ -225,30 +225,30 @@ void SimNode::emit_error(std::uint32_t flags, TimeNs when) noexcept {
   deliver(ReceiveResult::ErrorEvent, rx);
 }
 
-void SimNode::set_counters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept {
+void SimNode::setCounters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept {
   tec_ = tec;
   rec_ = std::min<std::uint32_t>(rec, 255u);
-  const BusState next = state_of(tec_, rec_);
+  const BusState next = stateOf(tec_, rec_);
   if (next != state_) {
-    flags |= state_flag(next);
+    flags |= stateFlag(next);
     state_ = next;
     if (next == BusState::BusOff) {
-      tx_flush();
+      txFlush();
       recovery_occurrences_ = 0;
       recovery_recessive_ns_ = 0;
     }
   }
-  emit_error(flags, when);
+  emitError(flags, when);
 }
 
 // ---------------------------------------------------------------------------------------------
 // SimBus
 
-TimeNs SimBus::bit_time() const noexcept {
+TimeNs SimBus::bitTime() const noexcept {
   return static_cast<TimeNs>((1000000000ull + config_.nominal_bps - 1u) / config_.nominal_bps);
 }
 
-mrqp_fw_frame_bits SimBus::frame_bits(const mrqp_fw_frame& frame) const noexcept {
+mrqp_fw_frame_bits SimBus::frameBits(const mrqp_fw_frame& frame) const noexcept {
   const int worst = config_.worst_case_stuffing ? 1 : 0;
   if ((frame.flags & MRQP_FW_FRAME_FD) != 0u) {
     return mrqp_fw_bits_fd(frame.len, (frame.flags & MRQP_FW_FRAME_BRS) != 0u ? 1 : 0, worst);
@@ -256,12 +256,12 @@ mrqp_fw_frame_bits SimBus::frame_bits(const mrqp_fw_frame& frame) const noexcept
   return mrqp_fw_bits_classic(frame.len, worst);
 }
 
-TimeNs SimBus::bits_time(mrqp_fw_frame_bits bits) const noexcept {
+TimeNs SimBus::bitsTime(mrqp_fw_frame_bits bits) const noexcept {
   const std::uint32_t data = config_.data_bps > 0u ? config_.data_bps : config_.nominal_bps;
   return static_cast<TimeNs>(mrqp_fw_frame_time_ns(bits, config_.nominal_bps, data));
 }
 
-bool SimBus::is_receiver(const SimNode& n) const noexcept {
+bool SimBus::isReceiver(const SimNode& n) const noexcept {
   if (!n.connected_ || n.state_ == BusState::BusOff) {
     return false;
   }
@@ -270,28 +270,28 @@ bool SimBus::is_receiver(const SimNode& n) const noexcept {
       return false;
     }
   }
-  if ((current_.frame.flags & MRQP_FW_FRAME_FD) != 0u && !n.fd_enabled()) {
+  if ((current_.frame.flags & MRQP_FW_FRAME_FD) != 0u && !n.fdEnabled()) {
     return false;  // a classic-only controller neither receives nor acknowledges FD frames here
   }
   return true;
 }
 
-TimeNs SimBus::eligible_time(const SimNode& n) const noexcept {
+TimeNs SimBus::eligibleTime(const SimNode& n) const noexcept {
   if (!n.connected_ || n.state_ == BusState::BusOff || n.tx_count_ == 0) {
     return kNever;
   }
-  return std::max(n.tx_head().ready, n.suspend_until_);
+  return std::max(n.txHead().ready, n.suspend_until_);
 }
 
-TimeNs SimBus::next_tx_start() const noexcept {
+TimeNs SimBus::nextTxStart() const noexcept {
   TimeNs t = kNever;
   for (const auto& n : nodes_) {
-    t = std::min(t, eligible_time(*n));
+    t = std::min(t, eligibleTime(*n));
   }
   return t == kNever ? kNever : std::max(t, bus_free_);
 }
 
-TimeNs SimBus::next_recovery() const noexcept {
+TimeNs SimBus::nextRecovery() const noexcept {
   TimeNs t = kNever;
   for (const auto& p : nodes_) {
     const SimNode& n = *p;
@@ -307,7 +307,7 @@ TimeNs SimBus::next_recovery() const noexcept {
   return t;
 }
 
-void SimBus::account_idle(TimeNs t) noexcept {
+void SimBus::accountIdle(TimeNs t) noexcept {
   if (t <= idle_mark_) {
     return;
   }
@@ -325,7 +325,7 @@ void SimBus::account_idle(TimeNs t) noexcept {
   idle_mark_ = t;
 }
 
-void SimBus::recover_due(TimeNs t) noexcept {
+void SimBus::recoverDue(TimeNs t) noexcept {
   for (auto& p : nodes_) {
     SimNode& n = *p;
     if (n.connected_ && n.state_ == BusState::BusOff && n.config_.auto_recover &&
@@ -333,12 +333,12 @@ void SimBus::recover_due(TimeNs t) noexcept {
       n.recovery_occurrences_ = 0;
       n.recovery_recessive_ns_ = 0;
       n.suspend_until_ = 0;
-      n.set_counters(0, 0, bus_error::kRestarted, t);
+      n.setCounters(0, 0, bus_error::kRestarted, t);
     }
   }
 }
 
-TimeNs SimBus::next_timer() const noexcept {
+TimeNs SimBus::nextTimer() const noexcept {
   TimeNs t = kNever;
   for (const auto& n : nodes_) {
     if (n->connected_ && n->listener_ != nullptr) {
@@ -348,80 +348,80 @@ TimeNs SimBus::next_timer() const noexcept {
   return t;
 }
 
-void SimBus::fire_timers(TimeNs t) noexcept {
+void SimBus::fireTimers(TimeNs t) noexcept {
   for (auto& p : nodes_) {
     SimNode& n = *p;
     if (n.connected_ && n.listener_ != nullptr && n.timer_at_ <= t) {
       n.timer_at_ = SimNode::kNoTimer;
-      n.listener_->on_timer(n, t);
+      n.listener_->onTimer(n, t);
     }
   }
 }
 
-void SimBus::advance_to(TimeNs target) noexcept {
+void SimBus::advanceTo(TimeNs target) noexcept {
   if (target < now_) {
     return;
   }
   for (;;) {
-    const TimeNs t_timer = next_timer();
+    const TimeNs t_timer = nextTimer();
     if (busy_) {
       if (t_timer < current_.end && t_timer <= target) {
         now_ = std::max(now_, t_timer);
-        fire_timers(t_timer);
+        fireTimers(t_timer);
         continue;
       }
       if (current_.end > target) {
         break;
       }
-      finish_frame();
+      finishFrame();
       continue;
     }
-    const TimeNs t_tx = next_tx_start();
-    const TimeNs t_rec = next_recovery();
+    const TimeNs t_tx = nextTxStart();
+    const TimeNs t_rec = nextRecovery();
     const TimeNs t = std::min(std::min(t_tx, t_rec), t_timer);
     if (t == kNever || t > target) {
       break;
     }
-    account_idle(t);
+    accountIdle(t);
     now_ = std::max(now_, t);
     if (t_timer == t) {
-      fire_timers(t);  // frames sent by the timer at t join the arbitration at t
+      fireTimers(t);  // frames sent by the timer at t join the arbitration at t
       continue;
     }
     if (t_rec <= t_tx) {
-      recover_due(t);
+      recoverDue(t);
       continue;
     }
-    start_frame(t);
+    startFrame(t);
   }
   if (!busy_) {
-    account_idle(target);
+    accountIdle(target);
   }
   now_ = target;
 }
 
-void SimBus::start_frame(TimeNs t) noexcept {
+void SimBus::startFrame(TimeNs t) noexcept {
   // Arbitration: the lowest key among the nodes ready at t.
   std::uint64_t best = UINT64_MAX;
   for (const auto& p : nodes_) {
-    if (eligible_time(*p) <= t) {
-      best = std::min(best, arbitration_key(p->tx_head().frame));
+    if (eligibleTime(*p) <= t) {
+      best = std::min(best, arbitrationKey(p->txHead().frame));
     }
   }
   participant_count_ = 0;
   for (const auto& p : nodes_) {
-    if (eligible_time(*p) <= t && arbitration_key(p->tx_head().frame) == best) {
+    if (eligibleTime(*p) <= t && arbitrationKey(p->txHead().frame) == best) {
       participants_[participant_count_++] = p->index_;
     }
   }
   SimNode& winner = *nodes_[participants_[0]];
   current_.start = t;
   current_.node = winner.index_;
-  current_.frame = winner.tx_head().frame;
+  current_.frame = winner.txHead().frame;
 
   bool collision = false;
   for (std::size_t i = 1; i < participant_count_; ++i) {
-    if (!same_content(nodes_[participants_[i]]->tx_head().frame, current_.frame)) {
+    if (!sameContent(nodes_[participants_[i]]->txHead().frame, current_.frame)) {
       collision = true;
     }
   }
@@ -435,11 +435,11 @@ void SimBus::start_frame(TimeNs t) noexcept {
   }
   bool acked = false;
   for (const auto& p : nodes_) {
-    if (is_receiver(*p) && p->config_.acknowledge) {
+    if (isReceiver(*p) && p->config_.acknowledge) {
       acked = true;
     }
   }
-  mrqp_fw_frame_bits bits = frame_bits(current_.frame);
+  mrqp_fw_frame_bits bits = frameBits(current_.frame);
   if (collision) {
     current_.outcome = WireOutcome::Collision;
     bits.nominal_bits += kErrorExtraBits;
@@ -453,7 +453,7 @@ void SimBus::start_frame(TimeNs t) noexcept {
     current_.outcome = WireOutcome::Delivered;
   }
   current_.bits = bits;
-  current_.end = t + bits_time(bits);
+  current_.end = t + bitsTime(bits);
   for (auto& p : nodes_) {
     p->recovery_recessive_ns_ = 0;  // start of frame: a dominant bit
   }
@@ -461,7 +461,7 @@ void SimBus::start_frame(TimeNs t) noexcept {
   ++stats_.attempts;
 }
 
-void SimBus::finish_frame() noexcept {
+void SimBus::finishFrame() noexcept {
   busy_ = false;
   const TimeNs end = current_.end;
   now_ = std::max(now_, end);
@@ -476,17 +476,17 @@ void SimBus::finish_frame() noexcept {
     }
   }
   if (tap_ != nullptr) {
-    tap_->on_wire(current_);
+    tap_->onWire(current_);
   }
-  const TimeNs suspend = end + static_cast<TimeNs>(kSuspendBits) * bit_time();
+  const TimeNs suspend = end + static_cast<TimeNs>(kSuspendBits) * bitTime();
 
   switch (current_.outcome) {
     case WireOutcome::Delivered: {
       ++stats_.delivered;
       for (std::size_t i = 0; i < participant_count_; ++i) {
         SimNode& n = *nodes_[participants_[i]];
-        n.tx_pop();
-        n.set_counters(n.tec_ > 0 ? n.tec_ - 1 : 0, n.rec_, 0, end);
+        n.txPop();
+        n.setCounters(n.tec_ > 0 ? n.tec_ - 1 : 0, n.rec_, 0, end);
         if (n.state_ == BusState::ErrorPassive) {
           n.suspend_until_ = suspend;
         }
@@ -497,7 +497,7 @@ void SimBus::finish_frame() noexcept {
       rx.has_timestamp = true;
       for (auto& p : nodes_) {
         SimNode& n = *p;
-        if (!is_receiver(n)) {
+        if (!isReceiver(n)) {
           continue;
         }
         std::uint32_t rec = n.rec_;
@@ -506,7 +506,7 @@ void SimBus::finish_frame() noexcept {
         } else if (rec > 0u) {
           --rec;
         }
-        n.set_counters(n.tec_, rec, 0, end);
+        n.setCounters(n.tec_, rec, 0, end);
         n.deliver(ReceiveResult::Frame, rx);
       }
       for (std::size_t i = 0; i < participant_count_; ++i) {
@@ -517,7 +517,7 @@ void SimBus::finish_frame() noexcept {
           n.deliver(ReceiveResult::Frame, echo);
         }
         if (n.listener_ != nullptr) {
-          n.listener_->on_transmitted(n, current_.frame, end);
+          n.listener_->onTransmitted(n, current_.frame, end);
         }
       }
       break;
@@ -531,10 +531,10 @@ void SimBus::finish_frame() noexcept {
         const bool passive = n.state_ == BusState::ErrorPassive;
         const std::uint32_t tec = passive ? n.tec_ : n.tec_ + kTxErrorIncrement;
         if (n.config_.one_shot) {
-          n.tx_pop();
+          n.txPop();
           ++n.counters_.tx_failed;
         }
-        n.set_counters(tec, n.rec_, bus_error::kAck | bus_error::kTransmitting, end);
+        n.setCounters(tec, n.rec_, bus_error::kAck | bus_error::kTransmitting, end);
         if (n.state_ == BusState::ErrorPassive) {
           n.suspend_until_ = suspend;
         }
@@ -550,17 +550,17 @@ void SimBus::finish_frame() noexcept {
       }
       for (auto& p : nodes_) {
         SimNode& n = *p;
-        if (is_receiver(n)) {
-          n.set_counters(n.tec_, n.rec_ + 1u, bus_error::kProtocol, end);
+        if (isReceiver(n)) {
+          n.setCounters(n.tec_, n.rec_ + 1u, bus_error::kProtocol, end);
         }
       }
       for (std::size_t i = 0; i < participant_count_; ++i) {
         SimNode& n = *nodes_[participants_[i]];
         if (n.config_.one_shot) {
-          n.tx_pop();
+          n.txPop();
           ++n.counters_.tx_failed;
         }
-        n.set_counters(n.tec_ + kTxErrorIncrement, n.rec_, bus_error::kBit | bus_error::kTransmitting, end);
+        n.setCounters(n.tec_ + kTxErrorIncrement, n.rec_, bus_error::kBit | bus_error::kTransmitting, end);
         if (n.state_ == BusState::ErrorPassive) {
           n.suspend_until_ = suspend;
         }

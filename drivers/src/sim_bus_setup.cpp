@@ -26,7 +26,7 @@ SimBus::SimBus(const SimBusConfig& config) : config_(config) {
 
 SimBus::~SimBus() = default;
 
-SimNode* SimBus::add_node(const SimNodeConfig& config) {
+SimNode* SimBus::addNode(const SimNodeConfig& config) {
   if (nodes_.size() >= config_.max_nodes) {
     return nullptr;
   }

@@ -16,17 +16,17 @@ namespace mrqp::drivers {
 
 namespace {
 
-TimeNs timespec_ns(const timespec& ts) noexcept {
+TimeNs timespecNs(const timespec& ts) noexcept {
   return static_cast<TimeNs>(ts.tv_sec) * 1000000000 + static_cast<TimeNs>(ts.tv_nsec);
 }
 
 // Offset CLOCK_MONOTONIC - CLOCK_REALTIME now (two vDSO reads).
-TimeNs realtime_to_monotonic_offset() noexcept {
+TimeNs realtimeToMonotonicOffset() noexcept {
   timespec mono{};
   timespec real{};
   clock_gettime(CLOCK_MONOTONIC, &mono);
   clock_gettime(CLOCK_REALTIME, &real);
-  return timespec_ns(mono) - timespec_ns(real);
+  return timespecNs(mono) - timespecNs(real);
 }
 
 }  // namespace
@@ -81,7 +81,7 @@ SendResult SocketCanBus::send(const mrqp_fw_frame& frame) noexcept {
   return SendResult::Failed;
 }
 
-void SocketCanBus::on_error_frame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept {
+void SocketCanBus::onErrorFrame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept {
   std::uint32_t flags = 0;
   const std::uint32_t cls = can_id & CAN_ERR_MASK;
   if ((cls & CAN_ERR_TX_TIMEOUT) != 0u) {
@@ -200,7 +200,7 @@ ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept {
     if (c->cmsg_type == SCM_TIMESTAMPNS && c->cmsg_len >= CMSG_LEN(sizeof(timespec))) {
       timespec ts{};
       std::memcpy(&ts, CMSG_DATA(c), sizeof(ts));
-      out.timestamp = timespec_ns(ts) + realtime_to_monotonic_offset();
+      out.timestamp = timespecNs(ts) + realtimeToMonotonicOffset();
       out.has_timestamp = true;
     } else if (c->cmsg_type == SO_RXQ_OVFL && c->cmsg_len >= CMSG_LEN(sizeof(std::uint32_t))) {
       std::uint32_t drops = 0;
@@ -210,7 +210,7 @@ ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept {
     }
   }
   if (!out.has_timestamp) {
-    out.timestamp = monotonic_now();
+    out.timestamp = monotonicNow();
   }
   out.own = (msg.msg_flags & MSG_CONFIRM) != 0;  // CAN_RAW_RECV_OWN_MSGS: this socket's own frame
   const bool is_fd = n == static_cast<ssize_t>(CANFD_MTU);
@@ -220,7 +220,7 @@ ReceiveResult SocketCanBus::receive(RxFrame& out) noexcept {
     return ReceiveResult::Failed;
   }
   if ((f.can_id & CAN_ERR_FLAG) != 0u) {
-    on_error_frame(f.data, f.can_id, out);
+    onErrorFrame(f.data, f.can_id, out);
     return ReceiveResult::ErrorEvent;
   }
   mrqp_fw_frame& fr = out.frame;

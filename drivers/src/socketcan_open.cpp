@@ -19,7 +19,7 @@ namespace mrqp::drivers {
 
 namespace {
 
-std::string errno_text(int e) { return std::string(std::strerror(e)); }
+std::string errnoText(int e) { return std::string(std::strerror(e)); }
 
 bool fail(std::string* error, const std::string& message) {
   if (error != nullptr) {
@@ -57,16 +57,16 @@ bool SocketCanBus::open(const SocketCanConfig& config, std::string* error) {
     const int e = errno;
     if (e == EAFNOSUPPORT || e == EPROTONOSUPPORT || e == ESOCKTNOSUPPORT) {
       return fail(error,
-                  "AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): " + errno_text(e) +
+                  "AF_CAN not supported by this kernel (socket(AF_CAN, SOCK_RAW, CAN_RAW): " + errnoText(e) +
                       "): SocketCAN needs the can and can_raw kernel modules; use the in-process "
                       "bus (SimBus) here, or run on a kernel with CAN support (e.g. the HIL VM "
                       "with vcan, see docs/drivers.md)");
     }
-    return fail(error, "SocketCAN: socket(AF_CAN, SOCK_RAW, CAN_RAW) failed: " + errno_text(e));
+    return fail(error, "SocketCAN: socket(AF_CAN, SOCK_RAW, CAN_RAW) failed: " + errnoText(e));
   }
   auto give_up = [&](const std::string& what, int e) {
     ::close(s);
-    return fail(error, "SocketCAN " + ifname + ": " + what + ": " + errno_text(e));
+    return fail(error, "SocketCAN " + ifname + ": " + what + ": " + errnoText(e));
   };
 
   ifreq ifr{};

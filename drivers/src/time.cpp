@@ -5,7 +5,7 @@
 
 namespace mrqp::drivers {
 
-TimeNs monotonic_now() noexcept {
+TimeNs monotonicNow() noexcept {
   timespec ts{};
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return static_cast<TimeNs>(ts.tv_sec) * 1000000000 + static_cast<TimeNs>(ts.tv_nsec);

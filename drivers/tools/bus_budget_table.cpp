@@ -12,7 +12,7 @@
 
 int main(int argc, char** argv) {
   if (argc == 1) {
-    std::fputs(mrqp::drivers::reference_budget_tables().c_str(), stdout);
+    std::fputs(mrqp::drivers::referenceBudgetTables().c_str(), stdout);
     return 0;
   }
   if (argc != 4 && argc != 5) {
@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s: LIMIT_PERCENT must be in (0, 100]\n", argv[0]);
     return 2;
   }
-  const std::string table = mrqp::drivers::budget_table_markdown(
+  const std::string table = mrqp::drivers::budgetTableMarkdown(
       robot, {{"classic 1 Mbit/s", 1000000u, 0u}, {"CAN FD 1/5 Mbit/s", 1000000u, 5000000u}},
       {250.0, 500.0, 1000.0}, limit);
   std::fputs(table.c_str(), stdout);

@@ -25,11 +25,11 @@ struct Bench {
     SimNodeConfig mc;
     mc.name = "master";
     mc.rx_queue = 2048;
-    master = bus.add_node(mc);
+    master = bus.addNode(mc);
     SimNodeConfig ec;
     ec.name = "drive-emu";
     ec.tx_queue = 256;
-    emu = std::make_unique<SimDriveEmulator>(*bus.add_node(ec), emu_cfg);
+    emu = std::make_unique<SimDriveEmulator>(*bus.addNode(ec), emu_cfg);
     router = std::make_unique<BusRouter>(*master);
     ArmConfig cfg;
     cfg.cycle_period = milliseconds(2);  // 3 drives x (RPDO, TPDO1, TPDO2) + SYNC fit in 2 ms at 1 Mbit/s
@@ -43,7 +43,7 @@ struct Bench {
     arm = ArmDriver::create({router.get()}, cfg, &error);
   }
   const FaultReport& cycle() {
-    bus.advance_to(t);
+    bus.advanceTo(t);
     router->poll(t);
     const FaultReport& r = arm->update(t);
     flags |= r.flags;
@@ -51,7 +51,7 @@ struct Bench {
     t += config.cycle_period;
     return r;
   }
-  bool boot_and_enable() {
+  bool bootAndEnable() {
     arm->start(t);
     for (int k = 0; k < 2000 && arm->phase() != ArmPhase::Running; ++k) {
       cycle();
@@ -59,11 +59,11 @@ struct Bench {
     if (arm->phase() != ArmPhase::Running) {
       return false;
     }
-    arm->request_enable(t);
-    for (int k = 0; k < 200 && !arm->all_enabled(); ++k) {
+    arm->requestEnable(t);
+    for (int k = 0; k < 200 && !arm->allEnabled(); ++k) {
       cycle();
     }
-    return arm->all_enabled();
+    return arm->allEnabled();
   }
 
   SimBus bus;
@@ -77,7 +77,7 @@ struct Bench {
   TimeNs t = 0;
 };
 
-EmuConfig three_nodes() {
+EmuConfig threeNodes() {
   EmuConfig c;
   for (std::uint8_t n = 1; n <= 3; ++n) {
     EmuNode e;
@@ -91,9 +91,9 @@ EmuConfig three_nodes() {
 }  // namespace
 
 TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_emu]") {
-  Bench b(three_nodes());
+  Bench b(threeNodes());
   REQUIRE(b.arm != nullptr);
-  REQUIRE(b.boot_and_enable());
+  REQUIRE(b.bootAndEnable());
   CHECK((b.flags & fault::kBootFailed) == 0u);
   // A sine per joint; the drive's PD loop and the joint model must follow it.
   double worst = 0.0;
@@ -101,7 +101,7 @@ TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_e
     const double time = static_cast<double>(k) * 2e-3;
     for (std::size_t j = 0; j < 3; ++j) {
       const double target = 0.3 * std::sin(2.0 * M_PI * 0.5 * time + static_cast<double>(j));
-      REQUIRE(b.arm->set_position(j, target) == SetpointResult::Ok);
+      REQUIRE(b.arm->setPosition(j, target) == SetpointResult::Ok);
     }
     const FaultReport& r = b.cycle();
     REQUIRE((r.flags & (fault::kHeartbeatLost | fault::kFeedbackMissing | fault::kDeviceFault)) == 0u);
@@ -119,11 +119,11 @@ TEST_CASE("drive emulator: boot, enable and closed-loop CSP tracking", "[drive_e
 }
 
 TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer timeout", "[drive_emu]") {
-  EmuConfig c = three_nodes();
+  EmuConfig c = threeNodes();
   c.nodes[1].faults.heartbeat_stop_at = milliseconds(1500);
   Bench b(c);
   REQUIRE(b.arm != nullptr);
-  REQUIRE(b.boot_and_enable());
+  REQUIRE(b.bootAndEnable());
   REQUIRE(b.t < milliseconds(1500));
   TimeNs detected = -1;
   while (b.t < milliseconds(3000) && detected < 0) {
@@ -139,10 +139,10 @@ TEST_CASE("drive emulator: a stopped heartbeat is reported within the consumer t
 }
 
 TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees it", "[drive_emu]") {
-  EmuConfig c = three_nodes();
+  EmuConfig c = threeNodes();
   c.nodes[2].faults.emcy_at = milliseconds(1200);
   Bench b(c);
-  REQUIRE(b.boot_and_enable());
+  REQUIRE(b.bootAndEnable());
   bool emcy = false;
   bool fault_state = false;
   while (b.t < milliseconds(1600)) {
@@ -166,7 +166,7 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   }
   EmuConfig c;
   std::string err;
-  REQUIRE(load_config(good, &c, &err));
+  REQUIRE(loadConfig(good, &c, &err));
   REQUIRE(c.nodes.size() == 2);
   CHECK(c.nodes[0].scale.increments_per_rev == 131072u);
   CHECK(c.nodes[0].scale.rated_torque_mNm == 5000u);
@@ -175,9 +175,9 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   CHECK(c.nodes[1].faults.heartbeat_stop_at == milliseconds(2500));
   CHECK(c.nodes[1].faults.emcy_code == 0x3210);
   CHECK(c.corrupt_fraction == Approx(0.02));
-  REQUIRE(apply_fault_switch("saturate", "1@0.5", &c, &err));
+  REQUIRE(applyFaultSwitch("saturate", "1@0.5", &c, &err));
   CHECK(c.nodes[0].faults.saturate_at == milliseconds(500));
-  CHECK_FALSE(apply_fault_switch("emcy", "9@1", &c, &err));
+  CHECK_FALSE(applyFaultSwitch("emcy", "9@1", &c, &err));
   CHECK(err.find("node 9") != std::string::npos);
 
   const std::string bad = "drive_emu_bad.yaml";
@@ -186,43 +186,43 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
     f << "nodes:\n  - {node: 3, inertia: -1}\n";
   }
   // Errors are "FILE:LINE: FIELD: message", as for every YAML file of mrqp (control/scene/yaml_reader).
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: nodes[0].inertia: expected a number in (0, 1000000], got -1");
   {
     std::ofstream f(bad);
     f << "nodes:\n  - {node: 3, damping: abc}\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: nodes[0].damping: expected a number, got \"abc\"");
   {
     std::ofstream f(bad);
     f << "nodes: [1, 1]\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":1: nodes[1]: node id 1 appears twice (first at line 1)");
   {
     std::ofstream f(bad);
     f << "interface: vcan0\nnodes: [1]\njiont: {inertia: 1}\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":3: jiont: unknown key");
   {
     std::ofstream f(bad);
     f << "nodes: [1, 200]\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":1: nodes[1]: expected an integer in [1, 127], got 200");
   {
     std::ofstream f(bad);
     f << "nodes: [1]\nfaults: {drop_fraction: 1.5}\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: faults.drop_fraction: expected a fraction in [0, 1], got 1.5");
   {
     std::ofstream f(bad);
     f << "nodes:\n  - {node: 2}\n  - {inertia: 1}\n";
   }
-  CHECK_FALSE(load_config(bad, &c, &err));
+  CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":3: nodes[1]: missing required field 'node'");
   std::remove(good.c_str());
   std::remove(bad.c_str());
@@ -263,17 +263,17 @@ TEST_CASE("drive emulator: hostile configurations are refused with FILE:LINE: FI
     EmuConfig c;
     std::string err;
     INFO(text);
-    CHECK_FALSE(load_config(bad, &c, &err));
+    CHECK_FALSE(loadConfig(bad, &c, &err));
     CHECK(err == bad + expected);
   }
   // Command-line overrides go through the same limits.
-  EmuConfig c = three_nodes();
+  EmuConfig c = threeNodes();
   std::string err;
   c.duration_s = 1e300;
-  CHECK_FALSE(validate_config(c, "command line", &err));
+  CHECK_FALSE(validateConfig(c, "command line", &err));
   CHECK(err == "command line: duration: must be in [0, 1e6] s");
-  c = three_nodes();
-  CHECK_FALSE(apply_fault_switch("emcy", "1@1e300", &c, &err));
+  c = threeNodes();
+  CHECK_FALSE(applyFaultSwitch("emcy", "1@1e300", &c, &err));
   CHECK(err == "--emcy 1@1e300: bad time: expected seconds in [0, 1e6]");
   std::remove(bad.c_str());
 }
@@ -288,7 +288,7 @@ TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive boot
   }
   EmuConfig c;
   std::string err;
-  REQUIRE(load_config(file, &c, &err));
+  REQUIRE(loadConfig(file, &c, &err));
   const auto strict = mrqp::emulation::VendorProfile::strict();
   CHECK(c.profile.tpdo_count == 3u);
   CHECK(c.profile.vendor_id == 0x1234u);
@@ -296,18 +296,18 @@ TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive boot
   CHECK(c.profile.rtr_check == strict.rtr_check);
   CHECK(c.profile.sync_timeout_factor == strict.sync_timeout_factor);
   CHECK(c.profile.statusword_bits);
-  const std::string text = describe_config(c);
+  const std::string text = describeConfig(c);
   CHECK(text.find("3 TPDO(s)") != std::string::npos);
   CHECK(text.find("SYNC timeout 1.5 x 0x1006 (0x1029:01 = 2)") != std::string::npos);
   CHECK(text.find("node 2: 524288 increments/rev, rated 10 N m") != std::string::npos);
   std::remove(file.c_str());
 
   // The master boots the strict emulated drives (TPDO3/4 absent: 2 aborts tolerated), streams.
-  EmuConfig e = three_nodes();
+  EmuConfig e = threeNodes();
   e.profile = strict;
   Bench b(e);
   REQUIRE(b.arm != nullptr);
-  REQUIRE(b.boot_and_enable());
+  REQUIRE(b.bootAndEnable());
   for (int k = 0; k < 100; ++k) {
     const FaultReport& r = b.cycle();
     REQUIRE(r.flags == 0u);
@@ -319,18 +319,18 @@ TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive boot
   b.t += 4 * b.config.cycle_period;
   for (int k = 0; k < 20; ++k) b.cycle();
   for (std::size_t j = 0; j < 3; ++j) {
-    CHECK(b.emu->emulator().comm_errors(j) == 1u);
+    CHECK(b.emu->emulator().commErrors(j) == 1u);
     CHECK(b.emu->emulator().nmt(j) == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
     CHECK(b.arm->faults().devices[j].emcy_code == 0x8100);
   }
-  CHECK(b.arm->request_recovery(b.t) == 3u);
+  CHECK(b.arm->requestRecovery(b.t) == 3u);
   for (int k = 0; k < 200 && !b.arm->ready(); ++k) b.cycle();
   CHECK(b.arm->ready());
   // Safe exit: every emulated drive stopped and pre-operational.
-  b.arm->request_safe_exit(b.t);
-  for (int k = 0; k < 200 && !b.arm->safe_exit_done(); ++k) b.cycle();
+  b.arm->requestSafeExit(b.t);
+  for (int k = 0; k < 200 && !b.arm->safeExitDone(); ++k) b.cycle();
   b.cycle();
-  CHECK(b.arm->safe_exit_done());
+  CHECK(b.arm->safeExitDone());
   for (std::size_t j = 0; j < 3; ++j) {
     CHECK(b.emu->emulator().state(j) == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
     CHECK(b.emu->emulator().nmt(j) == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
@@ -338,7 +338,7 @@ TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive boot
 }
 
 TEST_CASE("drive emulator: corrupted frames are counted by the driver", "[drive_emu]") {
-  EmuConfig faulty = three_nodes();
+  EmuConfig faulty = threeNodes();
   faulty.corrupt_fraction = 0.05;  // of every frame the emulator sends, boot included
   faulty.seed = 7;
   Bench f(faulty);

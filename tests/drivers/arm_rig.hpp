@@ -32,13 +32,13 @@ struct ArmRig {
     for (std::size_t b = 0; b < nbus; ++b) {
       buses.push_back(std::make_unique<SimBus>());
       logs.push_back(std::make_unique<WireLog>());
-      buses[b]->set_tap(logs[b].get());
+      buses[b]->setTap(logs[b].get());
       SimNodeConfig mc;
       mc.name = "master";
       mc.rx_queue = 2048;
       mc.tx_queue = master_tx_queue;
       mc.echo_own = echo_own;
-      masters.push_back(buses[b]->add_node(mc));
+      masters.push_back(buses[b]->addNode(mc));
       routers.push_back(std::make_unique<BusRouter>(*masters[b]));
     }
     for (std::size_t i = 0; i < drives.size(); ++i) {
@@ -49,7 +49,7 @@ struct ArmRig {
       o.profile = profile;
       SimNodeConfig nc;
       nc.name = "drive";
-      fakes.push_back(std::make_unique<FakeCia402Drive>(*buses[drives[i].first]->add_node(nc), o));
+      fakes.push_back(std::make_unique<FakeCia402Drive>(*buses[drives[i].first]->addNode(nc), o));
       ArmDriveConfig d;
       d.bus = drives[i].first;
       d.node = drives[i].second;
@@ -76,7 +76,7 @@ struct ArmRig {
   /// One control cycle at time t, then t += period.
   const mrqp::drivers::FaultReport& cycle() {
     for (auto& b : buses) {
-      b->advance_to(t);
+      b->advanceTo(t);
     }
     for (auto& r : routers) {
       r->poll(t);
@@ -107,12 +107,12 @@ struct ArmRig {
   /// Runs the buses up to the next cycle time: the frames of the last transmit are on the wire.
   void flush() {
     for (auto& b : buses) {
-      b->advance_to(t);
+      b->advanceTo(t);
     }
   }
 
   /// Frames the master sent on `bus` since `from` (after flush()).
-  std::vector<std::string> master_frames(mrqp::drivers::TimeNs from = 0, std::size_t bus = 0) {
+  std::vector<std::string> masterFrames(mrqp::drivers::TimeNs from = 0, std::size_t bus = 0) {
     flush();
     return logs[bus]->frames(static_cast<long>(masters[bus]->index()), from);
   }

@@ -23,7 +23,7 @@ class IdealJointHost final : public mrqp::emulation::JointHost {
  public:
   IdealJointHost(mrqp::drivers::SimNode& node, bool hand) : node_(node), hand_(hand) {}
   void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
-    (void)node_.send_at(frame, at);
+    (void)node_.sendAt(frame, at);
   }
   mrqp::emulation::JointMeasurement measure(std::size_t j, mrqp::drivers::TimeNs) noexcept override {
     return {static_cast<double>(p[j]), static_cast<double>(v[j]), static_cast<double>(t[j])};
@@ -66,7 +66,7 @@ class ConstantFtHost final : public mrqp::emulation::EmulatedFtSensor::Host {
  public:
   explicit ConstantFtHost(mrqp::drivers::SimNode& node) : node_(node) {}
   void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
-    (void)node_.send_at(frame, at);
+    (void)node_.sendAt(frame, at);
   }
   std::array<double, 6> wrench(mrqp::drivers::TimeNs) noexcept override { return value; }
   std::array<double, 6> value{};
@@ -79,7 +79,7 @@ class ConstantImuHost final : public mrqp::emulation::EmulatedImu::Host {
  public:
   explicit ConstantImuHost(mrqp::drivers::SimNode& node) : node_(node) {}
   void emit(const mrqp_fw_frame& frame, mrqp::drivers::TimeNs at) noexcept override {
-    (void)node_.send_at(frame, at);
+    (void)node_.sendAt(frame, at);
   }
   mrqp::emulation::ImuValues imu(mrqp::drivers::TimeNs) noexcept override { return value; }
   mrqp::emulation::ImuValues value{};

@@ -13,7 +13,7 @@ namespace drvtest {
 using mrqp::drivers::TimeNs;
 
 /// candump-like text: "201#0600000000000000" (classic), "140##1<hex>" (FD; 1 = BRS flag).
-inline std::string frame_str(const mrqp_fw_frame& f) {
+inline std::string frameStr(const mrqp_fw_frame& f) {
   static const char* hex = "0123456789ABCDEF";
   std::string s;
   for (int i = 2; i >= 0; --i) {
@@ -31,8 +31,8 @@ inline std::string frame_str(const mrqp_fw_frame& f) {
   return s;
 }
 
-inline mrqp_fw_frame make_frame(std::uint32_t id, std::initializer_list<std::uint8_t> data,
-                                std::uint8_t flags = 0) {
+inline mrqp_fw_frame makeFrame(std::uint32_t id, std::initializer_list<std::uint8_t> data,
+                               std::uint8_t flags = 0) {
   mrqp_fw_frame f{};
   f.id = id;
   f.flags = flags;
@@ -45,7 +45,7 @@ inline mrqp_fw_frame make_frame(std::uint32_t id, std::initializer_list<std::uin
 /// Records every transmission attempt on a SimBus.
 class WireLog final : public mrqp::drivers::SimTap {
  public:
-  void on_wire(const mrqp::drivers::WireEvent& e) noexcept override { events.push_back(e); }
+  void onWire(const mrqp::drivers::WireEvent& e) noexcept override { events.push_back(e); }
 
   /// Successfully delivered frames (text), optionally only those sent by `node`, from time `from`.
   std::vector<std::string> frames(long node = -1, TimeNs from = 0) const {
@@ -53,17 +53,17 @@ class WireLog final : public mrqp::drivers::SimTap {
     for (const auto& e : events) {
       if (e.outcome == mrqp::drivers::WireOutcome::Delivered && e.start >= from &&
           (node < 0 || e.node == static_cast<std::size_t>(node))) {
-        out.push_back(frame_str(e.frame));
+        out.push_back(frameStr(e.frame));
       }
     }
     return out;
   }
   /// Delivered frames between [from, to).
-  std::vector<std::string> frames_between(TimeNs from, TimeNs to) const {
+  std::vector<std::string> framesBetween(TimeNs from, TimeNs to) const {
     std::vector<std::string> out;
     for (const auto& e : events) {
       if (e.outcome == mrqp::drivers::WireOutcome::Delivered && e.start >= from && e.start < to) {
-        out.push_back(frame_str(e.frame));
+        out.push_back(frameStr(e.frame));
       }
     }
     return out;

@@ -20,18 +20,18 @@ namespace drvtest {
 template <class Rig, class Driver>
 struct SingleBusRig {
   /// A classic bus, or with `fd` a CAN FD bus (5 Mbit/s data phase) and an FD master.
-  SingleBusRig(bool fd, TimeNs cycle_period) : period(cycle_period), bus(bus_config(fd)) {
-    bus.set_tap(&log);
+  SingleBusRig(bool fd, TimeNs cycle_period) : period(cycle_period), bus(busConfig(fd)) {
+    bus.setTap(&log);
     mrqp::drivers::SimNodeConfig mc;
     mc.fd = fd;
     mc.name = "master";
-    master = bus.add_node(mc);
+    master = bus.addNode(mc);
     router = std::make_unique<mrqp::drivers::BusRouter>(*master);
   }
 
   /// One control cycle at time t, then t += period.
   const mrqp::drivers::FaultReport& cycle() {
-    bus.advance_to(t);
+    bus.advanceTo(t);
     router->poll(t);
     const mrqp::drivers::FaultReport& r = driver->update(t);
     if (hook) {
@@ -44,12 +44,12 @@ struct SingleBusRig {
   }
 
   /// Frames the master sent since `from`, the last transmit's included.
-  std::vector<std::string> master_frames(TimeNs from) {
-    bus.advance_to(t);
+  std::vector<std::string> masterFrames(TimeNs from) {
+    bus.advanceTo(t);
     return log.frames(static_cast<long>(master->index()), from);
   }
 
-  static mrqp::drivers::SimBusConfig bus_config(bool fd) {
+  static mrqp::drivers::SimBusConfig busConfig(bool fd) {
     mrqp::drivers::SimBusConfig bc;
     bc.data_bps = fd ? 5000000u : 0u;
     return bc;

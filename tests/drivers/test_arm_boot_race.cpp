@@ -19,11 +19,11 @@ using namespace mrqp::drivers;
 namespace {
 
 /// Start times of the frames `text_prefix` on bus 0 of the rig ("701#00": boot-up of node 1).
-std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix) {
+std::vector<TimeNs> timesOf(drvtest::ArmRig& r, const std::string& prefix) {
   r.flush();
   std::vector<TimeNs> out;
   for (const WireEvent& e : r.logs[0]->events) {
-    if (e.outcome == WireOutcome::Delivered && drvtest::frame_str(e.frame).rfind(prefix, 0) == 0) {
+    if (e.outcome == WireOutcome::Delivered && drvtest::frameStr(e.frame).rfind(prefix, 0) == 0) {
       out.push_back(e.start);
     }
   }
@@ -31,7 +31,7 @@ std::vector<TimeNs> times_of(drvtest::ArmRig& r, const std::string& prefix) {
 }
 
 /// Cycles until Running / Failed; ORs every report's flags into *flags.
-void boot_through(drvtest::ArmRig& r, std::uint32_t* flags) {
+void bootThrough(drvtest::ArmRig& r, std::uint32_t* flags) {
   for (int k = 0; k < 400 && r.arm->phase() != ArmPhase::Running && r.arm->phase() != ArmPhase::Failed; ++k) {
     *flags |= r.cycle().flags;
   }
@@ -57,17 +57,17 @@ TEST_CASE("drivers: arm boot race: a power-up boot-up on the wire as the reset g
     rr.hook = nullptr;
   };
   r.cycle();
-  const std::vector<TimeNs> resets = times_of(r, "000#8101");
-  const std::vector<TimeNs> early = times_of(r, "701#00");
+  const std::vector<TimeNs> resets = timesOf(r, "000#8101");
+  const std::vector<TimeNs> early = timesOf(r, "701#00");
   REQUIRE(resets.size() == 1u);
   REQUIRE(early.size() == 1u);
   REQUIRE(early[0] < resets[0]);                      // the power-up boot-up went first...
   REQUIRE(resets[0] - early[0] < microseconds(200));  // ... just before the reset
 
   std::uint32_t flags = 0;
-  boot_through(r, &flags);
-  const std::vector<TimeNs> bootups = times_of(r, "701#00");
-  const std::vector<TimeNs> sdo = times_of(r, "601#");
+  bootThrough(r, &flags);
+  const std::vector<TimeNs> bootups = timesOf(r, "701#00");
+  const std::vector<TimeNs> sdo = timesOf(r, "601#");
   REQUIRE(bootups.size() == 2u);  // power-up, then the answer to the reset
   REQUIRE(!sdo.empty());
   CHECK(sdo[0] > bootups[1]);  // configured only once the reset was answered
@@ -88,10 +88,10 @@ TEST_CASE("drivers: arm boot race: a boot-up received before the reset was sent 
   r.cycle();
   r.arm->start(r.t);
   std::uint32_t flags = 0;
-  boot_through(r, &flags);
-  const std::vector<TimeNs> bootups = times_of(r, "701#00");
-  const std::vector<TimeNs> resets = times_of(r, "000#8101");
-  const std::vector<TimeNs> sdo = times_of(r, "601#");
+  bootThrough(r, &flags);
+  const std::vector<TimeNs> bootups = timesOf(r, "701#00");
+  const std::vector<TimeNs> resets = timesOf(r, "000#8101");
+  const std::vector<TimeNs> sdo = timesOf(r, "601#");
   REQUIRE(bootups.size() == 2u);
   REQUIRE(resets.size() == 1u);
   REQUIRE(bootups[0] < resets[0]);
@@ -106,15 +106,15 @@ TEST_CASE("drivers: SimBus TX echo: own frames in wire order, routed to on_own_f
   SimBus bus;
   SimNodeConfig mc;
   mc.echo_own = true;
-  SimNode* master = bus.add_node(mc);
-  SimNode* other = bus.add_node(SimNodeConfig{});
-  CHECK(master->echoes_own());
-  CHECK_FALSE(other->echoes_own());
+  SimNode* master = bus.addNode(mc);
+  SimNode* other = bus.addNode(SimNodeConfig{});
+  CHECK(master->echoesOwn());
+  CHECK_FALSE(other->echoesOwn());
   // The other node's frame (lower priority id) waits behind the master's: wire order is master
   // first, and the master receives its echo before the other frame.
-  REQUIRE(master->send(drvtest::make_frame(0x000, {0x81, 0x01})) == SendResult::Ok);
-  REQUIRE(other->send(drvtest::make_frame(0x701, {0x00})) == SendResult::Ok);
-  bus.advance_to(milliseconds(1));
+  REQUIRE(master->send(drvtest::makeFrame(0x000, {0x81, 0x01})) == SendResult::Ok);
+  REQUIRE(other->send(drvtest::makeFrame(0x701, {0x00})) == SendResult::Ok);
+  bus.advanceTo(milliseconds(1));
   RxFrame rx{};
   REQUIRE(master->receive(rx) == ReceiveResult::Frame);
   CHECK(rx.own);
@@ -129,24 +129,24 @@ TEST_CASE("drivers: SimBus TX echo: own frames in wire order, routed to on_own_f
   CHECK(rx.frame.id == 0x000u);
   CHECK(other->receive(rx) == ReceiveResult::Empty);
 
-  // Routed: the echo goes to on_own_frame of every handler, never to on_frame, never unknown.
+  // Routed: the echo goes to onOwnFrame of every handler, never to onFrame, never unknown.
   struct Handler final : FrameHandler {
-    Claim on_frame(const BusRouter&, const RxFrame&, TimeNs) noexcept override {
+    Claim onFrame(const BusRouter&, const RxFrame&, TimeNs) noexcept override {
       ++frames;
       return Claim::NotMine;
     }
-    void on_own_frame(const BusRouter&, const RxFrame&, TimeNs) noexcept override { ++own; }
+    void onOwnFrame(const BusRouter&, const RxFrame&, TimeNs) noexcept override { ++own; }
     int frames = 0;
     int own = 0;
   } h;
   BusRouter router(*master);
-  REQUIRE(router.add_handler(h));
-  REQUIRE(master->send(drvtest::make_frame(0x080, {})) == SendResult::Ok);
-  bus.advance_to(milliseconds(2));
+  REQUIRE(router.addHandler(h));
+  REQUIRE(master->send(drvtest::makeFrame(0x080, {})) == SendResult::Ok);
+  bus.advanceTo(milliseconds(2));
   router.poll(milliseconds(2));
   CHECK(h.own == 1);
   CHECK(h.frames == 0);
   CHECK(router.stats().echoes == 1u);
   CHECK(router.stats().unknown == 0u);
-  router.remove_handler(h);
+  router.removeHandler(h);
 }

@@ -14,13 +14,13 @@
 
 using namespace mrqp::drivers;
 using drvtest::ArmRig;
-using drvtest::frame_str;
-using drvtest::make_frame;
+using drvtest::frameStr;
+using drvtest::makeFrame;
 
 namespace {
 
 // Expedited SDO download request, CiA 301: byte 0 = 001 0 nn 1 1 with nn = 4 - size.
-std::string sdo_write(unsigned node, unsigned index, unsigned sub, unsigned size, std::uint32_t value) {
+std::string sdoWrite(unsigned node, unsigned index, unsigned sub, unsigned size, std::uint32_t value) {
   char buf[64];
   const unsigned cs = 0x23u | ((4u - size) << 2);
   std::snprintf(buf, sizeof(buf), "%03X#%02X%02X%02X%02X%02X%02X%02X%02X", 0x600 + node, cs, index & 0xFFu,
@@ -30,7 +30,7 @@ std::string sdo_write(unsigned node, unsigned index, unsigned sub, unsigned size
 }
 
 // Download response: 0x60, index, sub, zeros.
-std::string sdo_ack(unsigned node, unsigned index, unsigned sub) {
+std::string sdoAck(unsigned node, unsigned index, unsigned sub) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), "%03X#60%02X%02X%02X00000000", 0x580 + node, index & 0xFFu, index >> 8,
                 sub);
@@ -46,7 +46,7 @@ struct Write {
 // CiA 301 PDO procedure (disable, transmission type, clear mapping, entries, count, enable),
 // mapping entries = index << 16 | sub << 8 | bits (docs/protocol.md); TPDO COB-IDs with bit 31
 // (0x80000000: disabled) while configured and bit 30 (0x40000000: no RTR) always.
-std::vector<Write> boot_writes(unsigned n, bool consumer = false) {
+std::vector<Write> bootWrites(unsigned n, bool consumer = false) {
   std::vector<Write> w = {{0x1017, 0, 2, 100}};
   if (consumer) {
     w.push_back({0x1016, 1, 4, (0x7Fu << 16) | 30u});
@@ -106,12 +106,12 @@ std::vector<std::string> only(const std::vector<std::string>& frames, unsigned i
   return out;
 }
 
-std::uint16_t cw_of(const std::string& rpdo_text) {
+std::uint16_t cwOf(const std::string& rpdo_text) {
   return static_cast<std::uint16_t>(std::stoul(rpdo_text.substr(4, 2), nullptr, 16) |
                                     (std::stoul(rpdo_text.substr(6, 2), nullptr, 16) << 8));
 }
 
-ArmConfig base_config() {
+ArmConfig baseConfig() {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   return c;
@@ -121,7 +121,7 @@ ArmConfig base_config() {
 
 TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configuration, NMT start, PDOs)",
           "[drivers][arm]") {
-  ArmRig rig({{0, 1}, {0, 2}}, base_config());
+  ArmRig rig({{0, 1}, {0, 2}}, baseConfig());
   REQUIRE(rig.arm != nullptr);
   const int cycles = rig.boot();
   REQUIRE(rig.arm->phase() == ArmPhase::Running);
@@ -129,12 +129,12 @@ TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configurat
     rig.cycle();
   }
   std::vector<std::string> expected = {"000#8101", "000#8102"};
-  const auto w1 = boot_writes(1);
-  const auto w2 = boot_writes(2);
+  const auto w1 = bootWrites(1);
+  const auto w2 = bootWrites(2);
   REQUIRE(w1.size() == 29u);
   for (std::size_t k = 0; k < w1.size(); ++k) {
-    expected.push_back(sdo_write(1, w1[k].index, w1[k].sub, w1[k].size, w1[k].value));
-    expected.push_back(sdo_write(2, w2[k].index, w2[k].sub, w2[k].size, w2[k].value));
+    expected.push_back(sdoWrite(1, w1[k].index, w1[k].sub, w1[k].size, w1[k].value));
+    expected.push_back(sdoWrite(2, w2[k].index, w2[k].sub, w2[k].size, w2[k].value));
   }
   expected.push_back("000#0101");
   expected.push_back("000#0102");
@@ -143,7 +143,7 @@ TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configurat
     expected.push_back(rpdo(2, 0, 0, 0));
     expected.push_back("080#");
   }
-  CHECK(rig.master_frames() == expected);
+  CHECK(rig.masterFrames() == expected);
   // 3 cycles until both boot-up messages (2 ms after the resets), 29 SDO round trips (one per
   // cycle and drive), the start cycle.
   CHECK(cycles == 3 + 29 + 1);
@@ -158,10 +158,10 @@ TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configurat
   }
   std::vector<std::string> sdo_expected;
   for (std::size_t k = 0; k < w1.size(); ++k) {
-    sdo_expected.push_back(sdo_write(1, w1[k].index, w1[k].sub, w1[k].size, w1[k].value));
-    sdo_expected.push_back(sdo_write(2, w2[k].index, w2[k].sub, w2[k].size, w2[k].value));
-    sdo_expected.push_back(sdo_ack(1, w1[k].index, w1[k].sub));
-    sdo_expected.push_back(sdo_ack(2, w2[k].index, w2[k].sub));
+    sdo_expected.push_back(sdoWrite(1, w1[k].index, w1[k].sub, w1[k].size, w1[k].value));
+    sdo_expected.push_back(sdoWrite(2, w2[k].index, w2[k].sub, w2[k].size, w2[k].value));
+    sdo_expected.push_back(sdoAck(1, w1[k].index, w1[k].sub));
+    sdo_expected.push_back(sdoAck(2, w2[k].index, w2[k].sub));
   }
   CHECK(sdo == sdo_expected);
   CHECK(only(all, 0x701) == std::vector<std::string>{"701#00"});  // boot-up after the reset
@@ -170,22 +170,22 @@ TEST_CASE("drivers: boot: exact master frame sequence (NMT reset, SDO configurat
   // The drives ended configured as written (their own checks refuse a wrong order).
   for (const auto& f : rig.fakes) {
     CHECK(f->nmt() == MRQP_FW_NMT_STATE_OPERATIONAL);
-    CHECK(f->rpdo1_configured());
-    CHECK(f->tpdo1_configured());
-    CHECK(f->tpdo2_configured());
+    CHECK(f->rpdo1Configured());
+    CHECK(f->tpdo1Configured());
+    CHECK(f->tpdo2Configured());
     std::uint32_t v = 0;
     REQUIRE(f->od(0x6060, 0, &v));
     CHECK(v == 8u);
     REQUIRE(f->od(0x1802, 1, &v));
     CHECK((v & 0x80000000u) != 0u);
-    CHECK(f->sdo_writes() == 29u);
+    CHECK(f->sdoWrites() == 29u);
   }
   CHECK(rig.arm->faults().flags == 0u);
 }
 
 TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbeat every period",
           "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.master_node = 0x7F;
   c.master_heartbeat_ms = 10;
   c.drive_consumer_ms = 30;
@@ -196,8 +196,8 @@ TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbe
   while (rig.t < milliseconds(100)) {
     rig.cycle();
   }
-  const auto master = rig.master_frames();
-  const auto w = boot_writes(3, true);
+  const auto master = rig.masterFrames();
+  const auto w = bootWrites(3, true);
   std::vector<std::string> sdo;
   for (const auto& f : master) {
     if (f[0] == '6') {
@@ -206,7 +206,7 @@ TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbe
   }
   REQUIRE(sdo.size() == w.size());
   for (std::size_t k = 0; k < w.size(); ++k) {
-    CHECK(sdo[k] == sdo_write(3, w[k].index, w[k].sub, w[k].size, w[k].value));
+    CHECK(sdo[k] == sdoWrite(3, w[k].index, w[k].sub, w[k].size, w[k].value));
   }
   // Heartbeats at 0, 10, 20, ... 90 ms: 10 of them before 100 ms.
   CHECK(only(master, 0x77F).size() == 10u);
@@ -225,7 +225,7 @@ TEST_CASE("drivers: boot with a master heartbeat: consumer time written, heartbe
 
 TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO2 by priority",
           "[drivers][arm]") {
-  ArmRig rig({{0, 1}, {0, 2}}, base_config(), 64, {1000, -2000});
+  ArmRig rig({{0, 1}, {0, 2}}, baseConfig(), 64, {1000, -2000});
   REQUIRE(rig.arm != nullptr);
   rig.boot();
   for (int k = 0; k < 3; ++k) {
@@ -233,14 +233,14 @@ TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO
   }
   const TimeNs t0 = rig.t;
   rig.cycle();
-  rig.buses[0]->advance_to(rig.t);
+  rig.buses[0]->advanceTo(rig.t);
   // Hand-encoded: disabled (cw 0), hold the measured position; statusword 0x0050 = switch on
   // disabled + voltage enabled; TPDO2: velocity 0, error 0, mode 8.
   const std::vector<std::string> expected = {
       rpdo(1, 0, 1000, 0),  rpdo(2, 0, -2000, 0), "080#", "181#5000E80300000000", "182#500030F8FFFF0000",
       "281#00000000000008", "282#00000000000008",
   };
-  CHECK(rig.logs[0]->frames_between(t0, rig.t) == expected);
+  CHECK(rig.logs[0]->framesBetween(t0, rig.t) == expected);
   // Timing: 135 + 135 us of RPDOs, SYNC 55 us, answers 20 us after the SYNC.
   std::vector<TimeNs> starts;
   for (const auto& e : rig.logs[0]->events) {
@@ -264,7 +264,7 @@ TEST_CASE("drivers: per-cycle traffic: RPDO per drive, one SYNC, then TPDO1/TPDO
 }
 
 TEST_CASE("drivers: SYNC with a counter wraps at the configured overflow", "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.sync_counter_overflow = 3;
   ArmRig rig({{0, 1}}, c);
   REQUIRE(rig.arm != nullptr);
@@ -272,14 +272,14 @@ TEST_CASE("drivers: SYNC with a counter wraps at the configured overflow", "[dri
   for (int k = 0; k < 5; ++k) {
     rig.cycle();
   }
-  rig.buses[0]->advance_to(rig.t);
+  rig.buses[0]->advanceTo(rig.t);
   CHECK(only(rig.wire(), 0x080) ==
         std::vector<std::string>{"080#01", "080#02", "080#03", "080#01", "080#02"});
 }
 
 TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, setpoints after enabling",
           "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   ArmDriveConfig limits;
   limits.position_max = 1.0;
   c.drives = {limits};
@@ -290,21 +290,21 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   rig.cycle();
   const TimeNs t_enable = rig.t;
   rig.hook = [](ArmRig& r) {
-    r.arm->request_enable(r.t);
+    r.arm->requestEnable(r.t);
     r.hook = nullptr;
   };
   int cycles = 0;
   do {
     rig.cycle();
     ++cycles;
-  } while (!rig.arm->all_enabled() && cycles < 20);
+  } while (!rig.arm->allEnabled() && cycles < 20);
   CHECK(cycles == 4);  // shutdown, switch on, enable operation, then reported enabled
-  auto rpdos = only(rig.master_frames(t_enable), 0x201);
+  auto rpdos = only(rig.masterFrames(t_enable), 0x201);
   REQUIRE(rpdos.size() >= 4u);
-  CHECK(cw_of(rpdos[0]) == 0x0006);
-  CHECK(cw_of(rpdos[1]) == 0x0007);
-  CHECK(cw_of(rpdos[2]) == 0x000F);
-  CHECK(cw_of(rpdos[3]) == 0x000F);
+  CHECK(cwOf(rpdos[0]) == 0x0006);
+  CHECK(cwOf(rpdos[1]) == 0x0007);
+  CHECK(cwOf(rpdos[2]) == 0x000F);
+  CHECK(cwOf(rpdos[3]) == 0x000F);
   // Until a setpoint is given the drive holds its measured position.
   CHECK(rpdos[3] == rpdo(1, 0x000F, 1000, 0));
   CHECK(rig.fakes[0]->state() == MRQP_FW_CIA402_OPERATION_ENABLED);
@@ -313,19 +313,19 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   const auto inc = static_cast<std::int32_t>(std::llround(0.5 * 524288.0 / (2.0 * M_PI)));
   CHECK(inc == 41722);
   TimeNs t_sp = rig.t;
-  rig.hook = [](ArmRig& r) { CHECK(r.arm->set_position(0, 0.5) == SetpointResult::Ok); };
+  rig.hook = [](ArmRig& r) { CHECK(r.arm->setPosition(0, 0.5) == SetpointResult::Ok); };
   rig.cycle();
   rig.cycle();
-  rpdos = only(rig.master_frames(t_sp), 0x201);
+  rpdos = only(rig.masterFrames(t_sp), 0x201);
   CHECK(rpdos[0] == rpdo(1, 0x000F, inc, 0));
-  CHECK(rig.fakes[0]->target_position() == inc);
+  CHECK(rig.fakes[0]->targetPosition() == inc);
   CHECK(rig.arm->drive(0).position == Approx(0.5).margin(1.2e-5));
 
   // NaN and infinity are refused and never sent: the previous setpoint stays on the wire.
   t_sp = rig.t;
   rig.hook = [](ArmRig& r) {
-    CHECK(r.arm->set_position(0, std::nan("")) == SetpointResult::Refused);
-    CHECK(r.arm->set_torque(1, INFINITY) == SetpointResult::Refused);
+    CHECK(r.arm->setPosition(0, std::nan("")) == SetpointResult::Refused);
+    CHECK(r.arm->setTorque(1, INFINITY) == SetpointResult::Refused);
   };
   const FaultReport& rep0 = rig.cycle();
   CHECK(rep0.flags == 0u);
@@ -335,7 +335,7 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   CHECK((rep.devices[0].flags & fault::kSetpointRefused) != 0u);
   CHECK(rep.devices[0].refused_setpoints == 1u);
   CHECK(rep.devices[1].refused_setpoints == 1u);
-  rpdos = only(rig.master_frames(t_sp), 0x201);
+  rpdos = only(rig.masterFrames(t_sp), 0x201);
   CHECK(rpdos[0] == rpdo(1, 0x000F, inc, 0));
   const FaultReport& rep2 = rig.cycle();
   CHECK(!rep2.has(fault::kSetpointRefused));  // an event: only in the cycle after it happened
@@ -343,29 +343,29 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
   // Beyond position_max (1 rad): clamped and flagged.
   t_sp = rig.t;
   rig.hook = [](ArmRig& r) {
-    CHECK(r.arm->set_position(0, 2.0) == SetpointResult::Limited);
+    CHECK(r.arm->setPosition(0, 2.0) == SetpointResult::Limited);
     r.hook = nullptr;
   };
   rig.cycle();
   const FaultReport& rep3 = rig.cycle();
   CHECK((rep3.devices[0].flags & fault::kSetpointLimited) != 0u);
-  rpdos = only(rig.master_frames(t_sp), 0x201);
+  rpdos = only(rig.masterFrames(t_sp), 0x201);
   CHECK(rpdos[0] == rpdo(1, 0x000F, static_cast<std::int32_t>(std::llround(524288.0 / (2.0 * M_PI))), 0));
 
   // Disable: Disable voltage (transition 9) straight to Switch on disabled.
   const TimeNs t_dis = rig.t;
   rig.hook = [](ArmRig& r) {
-    r.arm->request_disable(r.t);
+    r.arm->requestDisable(r.t);
     r.hook = nullptr;
   };
   cycles = 0;
   do {
     rig.cycle();
     ++cycles;
-  } while (!rig.arm->all_disabled() && cycles < 20);
+  } while (!rig.arm->allDisabled() && cycles < 20);
   CHECK(cycles == 2);
-  rpdos = only(rig.master_frames(t_dis), 0x201);
-  CHECK(cw_of(rpdos[0]) == 0x0000);
+  rpdos = only(rig.masterFrames(t_dis), 0x201);
+  CHECK(cwOf(rpdos[0]) == 0x0000);
   CHECK(rig.fakes[0]->state() == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
   CHECK(rig.fakes[1]->state() == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
   (void)t_enable;
@@ -373,26 +373,26 @@ TEST_CASE("drivers: enable and disable follow the CiA 402 controlword sequence, 
 
 TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled, error reset clears it",
           "[drivers][arm]") {
-  ArmRig rig({{0, 1}, {0, 2}}, base_config());
+  ArmRig rig({{0, 1}, {0, 2}}, baseConfig());
   REQUIRE(rig.arm != nullptr);
   rig.boot();
   rig.hook = [](ArmRig& r) {
-    r.arm->request_enable(r.t);
+    r.arm->requestEnable(r.t);
     r.hook = nullptr;
   };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }
-  REQUIRE(rig.arm->all_enabled());
-  rig.fakes[1]->inject_fault(0x2310, 0x03);  // continuous over-current, generic + current
+  REQUIRE(rig.arm->allEnabled());
+  rig.fakes[1]->injectFault(0x2310, 0x03);  // continuous over-current, generic + current
   const FaultReport& r1 = rig.cycle();
   CHECK(r1.has(fault::kEmcy));
   CHECK(r1.devices[1].emcy_code == 0x2310);
   CHECK(r1.devices[1].emcy_register == 0x03);
   CHECK(r1.devices[1].emcy_count == 1u);
   CHECK(r1.devices[0].flags == 0u);
-  CHECK_THAT(describe_faults(r1), Catch::Matchers::Contains("device 1: EMCY"));
-  CHECK_THAT(describe_faults(r1),
+  CHECK_THAT(describeFaults(r1), Catch::Matchers::Contains("device 1: EMCY"));
+  CHECK_THAT(describeFaults(r1),
              Catch::Matchers::Contains("EMCY 0x2310 (" + std::string(mrqp_fw_emcy_code_str(0x2310)) +
                                        ") register 0x03 from node 2"));
   // Fault reaction active, then Fault: reported as a device fault and not reset automatically.
@@ -403,25 +403,25 @@ TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled
   CHECK((r2.devices[1].flags & fault::kDeviceFault) != 0u);
   CHECK(rig.arm->drive(1).state == MRQP_FW_CIA402_FAULT);
   CHECK(rig.fakes[1]->state() == MRQP_FW_CIA402_FAULT);
-  CHECK(rig.fakes[1]->last_controlword() == 0x0000);
+  CHECK(rig.fakes[1]->lastControlword() == 0x0000);
   CHECK(rig.arm->drive(0).state == MRQP_FW_CIA402_OPERATION_ENABLED);
   // Enabling again: fault reset (rising edge of bit 7), then the enabling sequence; the drive
   // announces "error reset" (EMCY 0x0000) which clears the EMCY flag.
   const TimeNs t0 = rig.t;
   rig.hook = [](ArmRig& r) {
-    r.arm->request_enable(r.t);
+    r.arm->requestEnable(r.t);
     r.hook = nullptr;
   };
   for (int k = 0; k < 8; ++k) {
     rig.cycle();
   }
-  CHECK(rig.arm->all_enabled());
-  const auto rpdos = only(rig.master_frames(t0), 0x202);
+  CHECK(rig.arm->allEnabled());
+  const auto rpdos = only(rig.masterFrames(t0), 0x202);
   REQUIRE(rpdos.size() >= 4u);
-  CHECK(cw_of(rpdos[0]) == 0x0080);
-  CHECK(cw_of(rpdos[1]) == 0x0006);
-  CHECK(cw_of(rpdos[2]) == 0x0007);
-  CHECK(cw_of(rpdos[3]) == 0x000F);
+  CHECK(cwOf(rpdos[0]) == 0x0080);
+  CHECK(cwOf(rpdos[1]) == 0x0006);
+  CHECK(cwOf(rpdos[2]) == 0x0007);
+  CHECK(cwOf(rpdos[3]) == 0x000F);
   const FaultReport& r3 = rig.arm->faults();
   CHECK(r3.devices[1].emcy_code == 0x0000);
   CHECK(r3.devices[1].emcy_count == 2u);
@@ -431,7 +431,7 @@ TEST_CASE("drivers: EMCY: code and register decoded, fault held until re-enabled
 
 TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the consumer time",
           "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.producer_heartbeat_ms = 10;
   c.heartbeat_timeout = milliseconds(25);
   ArmRig rig({{0, 1}, {0, 2}}, c);
@@ -446,7 +446,7 @@ TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the cons
   const TimeNs off = rig.t;
   const std::size_t off_cycle_k = 0;
   (void)off_cycle_k;
-  rig.buses[0]->advance_to(off - microseconds(500));
+  rig.buses[0]->advanceTo(off - microseconds(500));
   rig.fakes[1]->power(false);
   TimeNs last_hb_end = 0;
   for (const auto& e : rig.logs[0]->events) {
@@ -481,7 +481,7 @@ TEST_CASE("drivers: heartbeat loss is detected at the first cycle after the cons
 }
 
 TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th cycle", "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.feedback_missing_cycles = 3;
   ArmRig rig({{0, 1}, {0, 2}}, c);
   REQUIRE(rig.arm != nullptr);
@@ -489,7 +489,7 @@ TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th
   for (int k = 0; k < 3; ++k) {
     rig.cycle();
   }
-  rig.fakes[0]->set_pdo_silent(true);  // from the SYNC of the last cycle on
+  rig.fakes[0]->setPdoSilent(true);  // from the SYNC of the last cycle on
   const FaultReport& r1 = rig.cycle();
   CHECK(r1.devices[0].missed_cycles == 1u);
   CHECK(!r1.has(fault::kFeedbackMissing));
@@ -502,7 +502,7 @@ TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th
   CHECK(r3.devices[0].missed_cycles == 3u);
   CHECK((r3.devices[0].flags & fault::kFeedbackMissing) != 0u);
   CHECK(r3.devices[1].flags == 0u);
-  rig.fakes[0]->set_pdo_silent(false);
+  rig.fakes[0]->setPdoSilent(false);
   rig.cycle();
   const FaultReport& r4 = rig.cycle();
   CHECK(r4.devices[0].missed_cycles == 0u);
@@ -510,11 +510,11 @@ TEST_CASE("drivers: feedback missing for N cycles is flagged at exactly the N-th
 }
 
 TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.cycle_period = milliseconds(5);  // room for the injected frames after the cyclic traffic
   ArmRig rig({{0, 1}, {0, 2}}, c, 64, {1000, 0});
   REQUIRE(rig.arm != nullptr);
-  SimNode* injector = rig.buses[0]->add_node(SimNodeConfig{});
+  SimNode* injector = rig.buses[0]->addNode(SimNodeConfig{});
   rig.boot();
   for (int k = 0; k < 3; ++k) {
     rig.cycle();
@@ -522,16 +522,16 @@ TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[dri
   REQUIRE(rig.arm->faults().flags == 0u);
   const TimeNs quiet = rig.last + microseconds(1500);  // after this cycle's traffic
   const mrqp_fw_frame bad[] = {
-      make_frame(0x181, {0x50, 0x00, 0x99, 0x99, 0x00, 0x00, 0x00}),  // TPDO1 with DLC 7
-      make_frame(0x081, {0x10, 0x23, 0x40, 0, 0, 0, 0, 0}),           // EMCY: reserved bit 6
-      make_frame(0x701, {0x42}),                                      // heartbeat: no such state
-      make_frame(0x581, {0x60, 0x17, 0x10, 0, 0, 0, 0, 0}),           // SDO answer, nothing asked
-      make_frame(0x282, {0, 0, 0, 0, 0, 0, 0, 0}),                    // TPDO2 with DLC 8
-      make_frame(0x3F0, {1, 2, 3}),                                   // nobody's identifier
-      make_frame(0x183, {0x27, 0, 0, 0, 0, 0, 0, 0}),                 // node 3 is not configured
+      makeFrame(0x181, {0x50, 0x00, 0x99, 0x99, 0x00, 0x00, 0x00}),  // TPDO1 with DLC 7
+      makeFrame(0x081, {0x10, 0x23, 0x40, 0, 0, 0, 0, 0}),           // EMCY: reserved bit 6
+      makeFrame(0x701, {0x42}),                                      // heartbeat: no such state
+      makeFrame(0x581, {0x60, 0x17, 0x10, 0, 0, 0, 0, 0}),           // SDO answer, nothing asked
+      makeFrame(0x282, {0, 0, 0, 0, 0, 0, 0, 0}),                    // TPDO2 with DLC 8
+      makeFrame(0x3F0, {1, 2, 3}),                                   // nobody's identifier
+      makeFrame(0x183, {0x27, 0, 0, 0, 0, 0, 0, 0}),                 // node 3 is not configured
   };
   for (const mrqp_fw_frame& f : bad) {
-    REQUIRE(injector->send_at(f, quiet) == SendResult::Ok);
+    REQUIRE(injector->sendAt(f, quiet) == SendResult::Ok);
   }
   const FaultReport& r = rig.cycle();
   CHECK(r.devices[0].corrupt_frames == 4u);
@@ -551,9 +551,9 @@ TEST_CASE("drivers: corrupted and unknown frames are counted and dropped", "[dri
 }
 
 TEST_CASE("drivers: an SDO abort fails the boot and names the object", "[drivers][arm]") {
-  ArmRig rig({{0, 1}, {0, 2}}, base_config());
+  ArmRig rig({{0, 1}, {0, 2}}, baseConfig());
   REQUIRE(rig.arm != nullptr);
-  rig.fakes[1]->abort_on_write(0x6060, 0, MRQP_FW_SDO_ABORT_INVALID_VALUE);
+  rig.fakes[1]->abortOnWrite(0x6060, 0, MRQP_FW_SDO_ABORT_INVALID_VALUE);
   rig.boot();
   CHECK(rig.arm->phase() == ArmPhase::Failed);
   const FaultReport& r = rig.cycle();
@@ -562,13 +562,13 @@ TEST_CASE("drivers: an SDO abort fails the boot and names the object", "[drivers
   CHECK(r.devices[1].sdo_index == 0x6060);
   CHECK(r.devices[1].sdo_subindex == 0);
   CHECK((r.devices[0].flags & fault::kBootFailed) == 0u);
-  CHECK(only(rig.master_frames(), 0x000).size() == 2u);  // no start
+  CHECK(only(rig.masterFrames(), 0x000).size() == 2u);  // no start
   CHECK(rig.fakes[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
 }
 
 TEST_CASE("drivers: a drive that never boots times out, a drive that stops answering SDO times out",
           "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   c.boot_timeout = milliseconds(50);
   ArmRig rig({{0, 1}, {0, 2}}, c);
   REQUIRE(rig.arm != nullptr);
@@ -581,7 +581,7 @@ TEST_CASE("drivers: a drive that never boots times out, a drive that stops answe
         (fault::kTimeout | fault::kBootFailed));
   CHECK(r.devices[0].flags == 0u);
 
-  ArmConfig c2 = base_config();
+  ArmConfig c2 = baseConfig();
   c2.sdo_timeout = milliseconds(5);
   ArmRig rig2({{0, 1}, {0, 2}}, c2);
   REQUIRE(rig2.arm != nullptr);
@@ -607,7 +607,7 @@ TEST_CASE("drivers: a drive that never boots times out, a drive that stops answe
 
 TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC", "[drivers][arm]") {
   // The same node ids on two buses are two different drives.
-  ArmRig rig({{0, 1}, {0, 2}, {1, 1}, {1, 2}}, base_config(), 64, {10, 20, 30, 40});
+  ArmRig rig({{0, 1}, {0, 2}, {1, 1}, {1, 2}}, baseConfig(), 64, {10, 20, 30, 40});
   REQUIRE(rig.arm != nullptr);
   rig.boot();
   REQUIRE(rig.arm->phase() == ArmPhase::Running);
@@ -617,12 +617,12 @@ TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC"
   const TimeNs t0 = rig.t;
   rig.cycle();
   for (auto& b : rig.buses) {
-    b->advance_to(rig.t);
+    b->advanceTo(rig.t);
   }
-  CHECK(rig.logs[0]->frames_between(t0, rig.t) ==
+  CHECK(rig.logs[0]->framesBetween(t0, rig.t) ==
         std::vector<std::string>{rpdo(1, 0, 10, 0), rpdo(2, 0, 20, 0), "080#", "181#50000A0000000000",
                                  "182#5000140000000000", "281#00000000000008", "282#00000000000008"});
-  CHECK(rig.logs[1]->frames_between(t0, rig.t) ==
+  CHECK(rig.logs[1]->framesBetween(t0, rig.t) ==
         std::vector<std::string>{rpdo(1, 0, 30, 0), rpdo(2, 0, 40, 0), "080#", "181#50001E0000000000",
                                  "182#5000280000000000", "281#00000000000008", "282#00000000000008"});
   rig.cycle();
@@ -630,18 +630,18 @@ TEST_CASE("drivers: several buses: each gets its drives' RPDOs and its own SYNC"
   CHECK(rig.arm->drive(3).position_inc == 40);
   CHECK(rig.arm->faults().bus_count == 2u);
   BusBudget b0(BusSpec{"arm0", 1000000, 0, 1000.0, 0.8});
-  rig.arm->declare_traffic(0, b0);
+  rig.arm->declareTraffic(0, b0);
   // SYNC + 2 x (RPDO1, TPDO1, TPDO2) + 2 heartbeats every 100 ms (0.01 per 1 ms cycle each).
   CHECK(b0.result().frames_per_cycle == Approx(1 + 2 * 3 + 2 * 0.01));
 }
 
 TEST_CASE("drivers: bus-off and error-passive states reach the fault report", "[drivers][arm]") {
-  ArmRig rig({{0, 1}}, base_config());
+  ArmRig rig({{0, 1}}, baseConfig());
   REQUIRE(rig.arm != nullptr);
   rig.boot();
   rig.cycle();
   REQUIRE(rig.arm->faults().flags == 0u);
-  rig.masters[0]->inject_tx_errors(32);
+  rig.masters[0]->injectTxErrors(32);
   bool passive = false;
   bool off = false;
   bool error_frames = false;
@@ -669,7 +669,7 @@ TEST_CASE("drivers: bus-off and error-passive states reach the fault report", "[
 
 TEST_CASE("drivers: a full transmit queue is counted, one-shot frames are retried next cycle",
           "[drivers][arm]") {
-  ArmRig rig({{0, 1}, {0, 2}, {0, 3}}, base_config(), 2);
+  ArmRig rig({{0, 1}, {0, 2}, {0, 3}}, baseConfig(), 2);
   REQUIRE(rig.arm != nullptr);
   rig.arm->start(0);
   const FaultReport& r0 = rig.cycle();
@@ -695,7 +695,7 @@ TEST_CASE("drivers: a full transmit queue is counted, one-shot frames are retrie
 
 TEST_CASE("drivers: invalid configurations are refused with a message naming the field", "[drivers][arm]") {
   SimBus bus;
-  SimNode* m = bus.add_node(SimNodeConfig{});
+  SimNode* m = bus.addNode(SimNodeConfig{});
   BusRouter router(*m);
   std::string err;
   ArmConfig c;
@@ -730,7 +730,7 @@ TEST_CASE("drivers: invalid configurations are refused with a message naming the
 }
 
 TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   ArmDriveConfig d;
   d.mode = MRQP_FW_MODE_CST;
   d.scale.rated_torque_mNm = 2000;  // 1000 per mille = 2 N m
@@ -740,34 +740,34 @@ TEST_CASE("drivers: CST: the target torque is sent, the position is held", "[dri
   REQUIRE(rig.arm != nullptr);
   rig.boot();
   rig.hook = [](ArmRig& r) {
-    r.arm->request_enable(r.t);
+    r.arm->requestEnable(r.t);
     r.hook = nullptr;
   };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }
-  REQUIRE(rig.arm->all_enabled());
+  REQUIRE(rig.arm->allEnabled());
   const TimeNs t0 = rig.t;
   rig.hook = [](ArmRig& r) {
-    CHECK(r.arm->set_torque(0, 0.5) == SetpointResult::Ok);
-    CHECK(r.arm->set_position(0, 3.0) == SetpointResult::Ok);  // ignored in CST
+    CHECK(r.arm->setTorque(0, 0.5) == SetpointResult::Ok);
+    CHECK(r.arm->setPosition(0, 3.0) == SetpointResult::Ok);  // ignored in CST
   };
   rig.cycle();
   rig.cycle();
-  const auto rpdos = only(rig.master_frames(t0), 0x204);
+  const auto rpdos = only(rig.masterFrames(t0), 0x204);
   // 0.5 N m / 2 N m = 250 per mille.
   CHECK(rpdos[0] == rpdo(4, 0x000F, 777, 250));
-  CHECK(rig.fakes[0]->target_torque() == 250);
+  CHECK(rig.fakes[0]->targetTorque() == 250);
   CHECK(rig.arm->drive(0).torque == Approx(0.5));
-  rig.hook = [](ArmRig& r) { CHECK(r.arm->set_torque(0, -9.0) == SetpointResult::Limited); };
+  rig.hook = [](ArmRig& r) { CHECK(r.arm->setTorque(0, -9.0) == SetpointResult::Limited); };
   rig.cycle();
   rig.cycle();
-  CHECK(rig.fakes[0]->target_torque() == -750);
+  CHECK(rig.fakes[0]->targetTorque() == -750);
 }
 
 TEST_CASE("drivers: feedback outside the configured range is flagged every cycle it lasts",
           "[drivers][arm]") {
-  ArmConfig c = base_config();
+  ArmConfig c = baseConfig();
   ArmDriveConfig d;
   d.position_max = 0.01;  // rad; the drive sits at 1000 increments = 0.01198 rad
   c.drives = {d};
@@ -783,18 +783,18 @@ TEST_CASE("drivers: feedback outside the configured range is flagged every cycle
 }
 
 TEST_CASE("drivers: a mode display other than the configured mode is a state mismatch", "[drivers][arm]") {
-  ArmRig rig({{0, 1}}, base_config());
+  ArmRig rig({{0, 1}}, baseConfig());
   REQUIRE(rig.arm != nullptr);
-  rig.fakes[0]->force_mode_display(MRQP_FW_MODE_CST);
+  rig.fakes[0]->forceModeDisplay(MRQP_FW_MODE_CST);
   rig.boot();
   rig.hook = [](ArmRig& r) {
-    r.arm->request_enable(r.t);
+    r.arm->requestEnable(r.t);
     r.hook = nullptr;
   };
   for (int k = 0; k < 6; ++k) {
     rig.cycle();
   }
-  REQUIRE(rig.arm->all_enabled());
+  REQUIRE(rig.arm->allEnabled());
   CHECK((rig.arm->faults().devices[0].flags & fault::kStateMismatch) != 0u);
   CHECK(rig.arm->drive(0).mode_display == MRQP_FW_MODE_CST);
 }

@@ -39,14 +39,14 @@ void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
   for (int k = 0; k < cycles; ++k) {
     rig.hook = [&program, k](drvtest::ArmRig& r) { program(r, k); };
     const FaultReport& rep = rig.cycle();
-    out << "cycle " << k << " " << arm_phase_str(rig.arm->phase()) << " flags " << hex(rep.flags);
+    out << "cycle " << k << " " << armPhaseStr(rig.arm->phase()) << " flags " << hex(rep.flags);
     for (std::size_t i = 0; i < rep.device_count; ++i) {
       const DeviceFaults& d = rep.devices[i];
       out << " | " << hex(d.flags) << " m" << d.missed_cycles << " e" << d.emcy_count << " c"
           << d.corrupt_frames << " q" << d.tx_queue_full << " a" << hex(d.sdo_abort_code) << "@"
           << hex(d.sdo_index) << "." << unsigned(d.sdo_subindex);
     }
-    for (std::size_t i = 0; i < rig.arm->drive_count(); ++i) {
+    for (std::size_t i = 0; i < rig.arm->driveCount(); ++i) {
       const ArmDriveState& s = rig.arm->drive(i);
       out << " ; " << s.position_inc << " " << s.statusword << " " << unsigned(s.nmt_state) << " "
           << s.controlword;
@@ -57,12 +57,12 @@ void run(const std::string& name, drvtest::ArmRig& rig, int cycles,
   for (std::size_t b = 0; b < rig.logs.size(); ++b) {
     for (const WireEvent& e : rig.logs[b]->events) {
       out << "bus " << b << " t " << e.start << " n " << e.node << " o " << static_cast<int>(e.outcome) << " "
-          << drvtest::frame_str(e.frame) << "\n";
+          << drvtest::frameStr(e.frame) << "\n";
     }
   }
 }
 
-ArmConfig base_config() {
+ArmConfig baseConfig() {
   ArmConfig c;
   c.tpdo_rtr_allowed = true;  // the recording predates TPDO COB-IDs with bit 30 (no RTR)
   c.cycle_period = milliseconds(1);
@@ -70,10 +70,10 @@ ArmConfig base_config() {
 }
 
 /// `echo`: the masters receive their own frames (TX echo); the wire output must not change.
-std::string record_all(bool echo) {
+std::string recordAll(bool echo) {
   std::ostringstream out;
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     c.master_node = 0x7F;
     c.master_heartbeat_ms = 20;
     c.drive_consumer_ms = 60;
@@ -94,22 +94,22 @@ std::string record_all(bool echo) {
         "two buses", rig, 620,
         [](drvtest::ArmRig& r, int k) {
           if (k == 40 || k == 150) {
-            r.arm->request_enable(r.t);
+            r.arm->requestEnable(r.t);
           }
           if (k >= 40 && k < 250) {
-            (void)r.arm->set_position(0, 0.5 * std::sin(0.05 * k));
-            (void)r.arm->set_torque(0, 0.25);
-            (void)r.arm->set_torque(1, 5.0 * std::cos(0.05 * k));
-            (void)r.arm->set_position(2, k == 120 ? 9.0 : -0.3);  // once beyond the limit
+            (void)r.arm->setPosition(0, 0.5 * std::sin(0.05 * k));
+            (void)r.arm->setTorque(0, 0.25);
+            (void)r.arm->setTorque(1, 5.0 * std::cos(0.05 * k));
+            (void)r.arm->setPosition(2, k == 120 ? 9.0 : -0.3);  // once beyond the limit
           }
           if (k == 100) {
-            r.fakes[0]->inject_fault(0x2310, 0x03);
+            r.fakes[0]->injectFault(0x2310, 0x03);
           }
           if (k == 250) {
-            r.arm->request_quick_stop(r.t);
+            r.arm->requestQuickStop(r.t);
           }
           if (k == 280) {
-            r.arm->request_disable(r.t);
+            r.arm->requestDisable(r.t);
           }
           if (k == 320) {
             r.fakes[2]->power(false);
@@ -124,7 +124,7 @@ std::string record_all(bool echo) {
         out);
   }
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     c.reset = NmtReset::Communication;
     c.tpdo2 = false;
     c.write_cycle_period = false;
@@ -135,13 +135,13 @@ std::string record_all(bool echo) {
         "reset communication", rig, 120,
         [](drvtest::ArmRig& r, int k) {
           if (k == 60) {
-            r.arm->request_enable(r.t);
+            r.arm->requestEnable(r.t);
           }
         },
         out);
   }
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     c.reset = NmtReset::None;
     c.produce_sync = false;
     drvtest::ArmRig rig({{0, 7}}, c, 64, {}, echo);
@@ -151,16 +151,16 @@ std::string record_all(bool echo) {
         "no reset, no SYNC", rig, 200, [](drvtest::ArmRig&, int) {}, out);
   }
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     drvtest::ArmRig rig({{0, 1}, {0, 2}}, c, 64, {}, echo);
     REQUIRE(rig.arm != nullptr);
-    rig.fakes[1]->abort_on_write(0x1A00, 0, 0x06090030u);
+    rig.fakes[1]->abortOnWrite(0x1A00, 0, 0x06090030u);
     rig.arm->start(rig.t);
     run(
         "SDO abort", rig, 60, [](drvtest::ArmRig&, int) {}, out);
   }
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     drvtest::ArmRig rig({{0, 1}, {0, 2}, {0, 3}, {0, 4}}, c, 2, {}, echo);
     REQUIRE(rig.arm != nullptr);
     rig.arm->start(rig.t);
@@ -168,13 +168,13 @@ std::string record_all(bool echo) {
         "two-frame queue", rig, 300,
         [](drvtest::ArmRig& r, int k) {
           if (k == 200) {
-            r.arm->request_enable(r.t);
+            r.arm->requestEnable(r.t);
           }
         },
         out);
   }
   {
-    ArmConfig c = base_config();
+    ArmConfig c = baseConfig();
     c.boot_timeout = milliseconds(30);
     drvtest::ArmRig rig({{0, 1}, {0, 2}}, c, 64, {}, echo);
     REQUIRE(rig.arm != nullptr);
@@ -190,7 +190,7 @@ std::string record_all(bool echo) {
 
 TEST_CASE("drivers: arm master: wire output and fault reports as recorded", "[drivers][arm]") {
   const std::string path = std::string(MRQP_DRIVERS_TEST_DATA) + "/arm_wire.txt";
-  const std::string now = record_all(false);
+  const std::string now = recordAll(false);
   const char* record = std::getenv("MRQP_RECORD_ARM_WIRE");
   if (record != nullptr && std::string(record) == "1") {
     std::ofstream(path) << now;
@@ -217,5 +217,5 @@ TEST_CASE("drivers: arm master: wire output and fault reports as recorded", "[dr
     FAIL("line " << line << ": recorded \"" << la << "\", now \"" << lb << "\"");
   }
   // With TX echoes the master waits for the reset's echo instead of its send time: the same output.
-  CHECK(record_all(true) == before);
+  CHECK(recordAll(true) == before);
 }

@@ -1,6 +1,6 @@
 // The four drivers through the shared device interface (device.hpp): two identical rigs, one
-// driven through the driver's own named methods (set_position / set_torque, set_command,
-// set_joint(board, joint, ...), sensor()), the other only through JointDevice / WrenchDevice;
+// driven through the driver's own named methods (setPosition / setTorque, setCommand,
+// setJoint(board, joint, ...), sensor()), the other only through JointDevice / WrenchDevice;
 // every frame on the wire (the master's and the fake devices') must be the same, and the
 // interface's feedback must be the driver's own state.
 #include <catch2/catch.hpp>
@@ -31,7 +31,7 @@ double wave(int k, double amplitude, double phase) {
   return amplitude * std::sin(0.05 * static_cast<double>(k) + phase);
 }
 
-drvtest::ArmRig make_arm() {
+drvtest::ArmRig makeArm() {
   ArmConfig c;
   c.cycle_period = milliseconds(1);
   ArmDriveConfig csp;
@@ -44,7 +44,7 @@ drvtest::ArmRig make_arm() {
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
   MitRig() : SingleBusRig(false, milliseconds(1)) {
-    motors = std::make_unique<drvtest::FakeMitMotors>(*bus.add_node(SimNodeConfig{}));
+    motors = std::make_unique<drvtest::FakeMitMotors>(*bus.addNode(SimNodeConfig{}));
     MitHandConfig c;
     for (std::uint8_t id = 1; id <= 3; ++id) {
       motors->add(id);
@@ -64,8 +64,8 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
   explicit FdRig(std::uint8_t mode) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
-    board_a = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 2, 7);
-    board_b = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 5, 13);
+    board_a = std::make_unique<drvtest::FakeHandBoard>(*bus.addNode(bcfg), 2, 7);
+    board_b = std::make_unique<drvtest::FakeHandBoard>(*bus.addNode(bcfg), 5, 13);
     FdHandConfig c;
     c.enabled_mode = mode;
     HandBoardConfig h;
@@ -83,7 +83,7 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
 
 struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
   FtRig() : SingleBusRig(false, milliseconds(1)) {
-    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.add_node(SimNodeConfig{}), 0x30, false);
+    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.addNode(SimNodeConfig{}), 0x30, false);
     FtConfig c;
     c.produce_sync = true;
     FtSensorConfig s;
@@ -99,28 +99,28 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
 TEST_CASE(
     "drivers: device interface: the arm through JointDevice sends the frames of set_position/set_torque",
     "[drivers][device]") {
-  drvtest::ArmRig named = make_arm();
-  drvtest::ArmRig face = make_arm();
+  drvtest::ArmRig named = makeArm();
+  drvtest::ArmRig face = makeArm();
   REQUIRE(named.arm != nullptr);
   REQUIRE(face.arm != nullptr);
   JointDevice& dev = *face.arm;
   CHECK(std::string(dev.kind()) == "arm");
-  REQUIRE(dev.joint_count() == 2u);
-  CHECK(dev.joint_mode(0) == JointMode::Position);
-  CHECK(dev.joint_mode(1) == JointMode::Torque);
-  CHECK(dev.set_joint(2, JointCommand{}) == SetpointResult::BadIndex);
+  REQUIRE(dev.jointCount() == 2u);
+  CHECK(dev.jointMode(0) == JointMode::Position);
+  CHECK(dev.jointMode(1) == JointMode::Torque);
+  CHECK(dev.setJoint(2, JointCommand{}) == SetpointResult::BadIndex);
 
   CHECK(named.boot() == face.boot());
   CHECK(face.arm->phase() == ArmPhase::Running);
   CHECK_FALSE(dev.ready());
-  named.arm->request_enable(named.t);
-  dev.request_enable(face.t);
+  named.arm->requestEnable(named.t);
+  dev.requestEnable(face.t);
   int k = 0;
   named.hook = [&k](drvtest::ArmRig& r) {
-    if (r.arm->all_enabled()) {
-      (void)r.arm->set_position(0, wave(k, 0.5, 0.0));
-      (void)r.arm->set_torque(0, wave(k, 2.0, 1.0));
-      (void)r.arm->set_torque(1, wave(k, 3.0, 2.0));
+    if (r.arm->allEnabled()) {
+      (void)r.arm->setPosition(0, wave(k, 0.5, 0.0));
+      (void)r.arm->setTorque(0, wave(k, 2.0, 1.0));
+      (void)r.arm->setTorque(1, wave(k, 3.0, 2.0));
     }
   };
   face.hook = [&k](drvtest::ArmRig& r) {
@@ -130,11 +130,11 @@ TEST_CASE(
       c.position = wave(k, 0.5, 0.0);
       c.velocity = 1.0;  // not on the wire of the arm
       c.torque = wave(k, 2.0, 1.0);
-      (void)d.set_joint(0, c);
+      (void)d.setJoint(0, c);
       JointCommand t;
       t.position = 3.0;  // ignored in CST
       t.torque = wave(k, 3.0, 2.0);
-      (void)d.set_joint(1, t);
+      (void)d.setJoint(1, t);
     }
   };
   bool was_ready = false;
@@ -144,14 +144,14 @@ TEST_CASE(
     was_ready = was_ready || dev.ready();
   }
   CHECK(was_ready);
-  CHECK(face.arm->all_enabled());
+  CHECK(face.arm->allEnabled());
   const auto wire_named = named.wire();
   const auto wire_face = face.wire();
   CHECK(wire_named.size() > 400u);
   CHECK(wire_named == wire_face);
   // Not vacuous: the drives received the setpoints.
-  CHECK(face.fakes[0]->target_position() != 0);
-  CHECK(face.fakes[1]->target_torque() != 0);
+  CHECK(face.fakes[0]->targetPosition() != 0);
+  CHECK(face.fakes[1]->targetTorque() != 0);
   for (std::size_t i = 0; i < 2; ++i) {
     const JointFeedback fb = dev.joint(i);
     const ArmDriveState& s = face.arm->drive(i);
@@ -164,8 +164,8 @@ TEST_CASE(
   }
   CHECK_FALSE(dev.joint(2).valid);
   // Quick stop through the interface: the drives leave Operation enabled, as with the named call.
-  named.arm->request_quick_stop(named.t);
-  dev.request_quick_stop(face.t);
+  named.arm->requestQuickStop(named.t);
+  dev.requestQuickStop(face.t);
   for (int n = 0; n < 10; ++n) {
     named.cycle();
     face.cycle();
@@ -183,24 +183,24 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
   REQUIRE(face.driver != nullptr);
   JointDevice& dev = *face.driver;
   CHECK(std::string(dev.kind()) == "mit_hand");
-  REQUIRE(dev.joint_count() == 3u);
-  CHECK(dev.joint_mode(2) == JointMode::Impedance);
+  REQUIRE(dev.jointCount() == 3u);
+  CHECK(dev.jointMode(2) == JointMode::Impedance);
   int k = 0;
   named.hook = [&k](MitRig& r) {
     if (k == 2) {
-      r.driver->request_enable(r.t);
+      r.driver->requestEnable(r.t);
     }
     for (std::size_t i = 0; i < 3; ++i) {
       const float p = static_cast<float>(wave(k, 1.0, static_cast<double>(i)));
       // Motor 0 with explicit gains, the others with the defaults of the configuration.
       const mrqp_fw_mit_cmd c{p, 0.25f, i == 0 ? 50.0f : 20.0f, i == 0 ? 1.5f : 0.5f, -0.5f};
-      (void)r.driver->set_command(i, c);
+      (void)r.driver->setCommand(i, c);
     }
   };
   face.hook = [&k](MitRig& r) {
     JointDevice& d = *r.driver;
     if (k == 2) {
-      d.request_enable(r.t);
+      d.requestEnable(r.t);
     }
     for (std::size_t i = 0; i < 3; ++i) {
       JointCommand c;
@@ -211,7 +211,7 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
         c.stiffness = 50.0;
         c.damping = 1.5;
       }
-      (void)d.set_joint(i, c);
+      (void)d.setJoint(i, c);
     }
   };
   for (k = 0; k < 60; ++k) {
@@ -219,8 +219,8 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
     face.cycle();
   }
   CHECK(dev.ready());
-  named.bus.advance_to(named.t);
-  face.bus.advance_to(face.t);
+  named.bus.advanceTo(named.t);
+  face.bus.advanceTo(face.t);
   CHECK(named.log.frames().size() > 300u);
   CHECK(named.log.frames() == face.log.frames());
   CHECK(face.motors->position(1) != 0.0f);
@@ -239,14 +239,14 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
     JointCommand c;
     c.position = 1.0;
     c.stiffness = 100.0;
-    (void)r.driver->set_joint(0, c);
+    (void)r.driver->setJoint(0, c);
   };
   const float held = face.driver->motor(0).position;
-  dev.request_quick_stop(face.t);
-  CHECK(face.driver->quick_stopped());
+  dev.requestQuickStop(face.t);
+  CHECK(face.driver->quickStopped());
   face.cycle();
   face.cycle();
-  face.bus.advance_to(face.t);
+  face.bus.advanceTo(face.t);
   const auto frames = face.log.frames(static_cast<long>(face.master->index()), t0);
   REQUIRE(frames.size() >= 3u);
   mrqp_fw_frame f{};
@@ -258,7 +258,7 @@ TEST_CASE("drivers: device interface: the MIT hand through JointDevice sends the
   expect.kd = 2.0f;
   (void)mrqp_fw_mit_pack_cmd(&ranges, 1, &expect, &f);
   CHECK(frames.back().substr(0, 3) == "003");
-  CHECK(std::find(frames.begin(), frames.end(), drvtest::frame_str(f)) != frames.end());
+  CHECK(std::find(frames.begin(), frames.end(), drvtest::frameStr(f)) != frames.end());
 }
 
 TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over every board in order",
@@ -271,36 +271,36 @@ TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over e
     REQUIRE(face.driver != nullptr);
     JointDevice& dev = *face.driver;
     CHECK(std::string(dev.kind()) == "fd_hand");
-    REQUIRE(dev.joint_count() == 20u);
-    CHECK(dev.joint_mode(19) == (mode == MRQP_FW_HAND_MODE_TORQUE ? JointMode::Torque : JointMode::Position));
-    CHECK(dev.set_joint(20, JointCommand{}) == SetpointResult::BadIndex);
+    REQUIRE(dev.jointCount() == 20u);
+    CHECK(dev.jointMode(19) == (mode == MRQP_FW_HAND_MODE_TORQUE ? JointMode::Torque : JointMode::Position));
+    CHECK(dev.setJoint(20, JointCommand{}) == SetpointResult::BadIndex);
     int k = 0;
     named.hook = [&k](FdRig& r) {
       if (k == 2) {
-        r.driver->request_enable(r.t);
+        r.driver->requestEnable(r.t);
       }
       for (std::size_t b = 0; b < 2; ++b) {
         const std::size_t n = b == 0 ? 7u : 13u;
         for (std::size_t j = 0; j < n; ++j) {
           const double phase = static_cast<double>(b * 7 + j);
-          (void)r.driver->set_joint(b, j, static_cast<float>(wave(k, 0.8, phase)),
-                                    static_cast<float>(wave(k, 2.0, phase + 1.0)),
-                                    static_cast<float>(wave(k, 1.0, phase + 2.0)));
+          (void)r.driver->setJoint(b, j, static_cast<float>(wave(k, 0.8, phase)),
+                                   static_cast<float>(wave(k, 2.0, phase + 1.0)),
+                                   static_cast<float>(wave(k, 1.0, phase + 2.0)));
         }
       }
     };
     face.hook = [&k](FdRig& r) {
       JointDevice& d = *r.driver;
       if (k == 2) {
-        d.request_enable(r.t);
+        d.requestEnable(r.t);
       }
-      for (std::size_t i = 0; i < d.joint_count(); ++i) {
+      for (std::size_t i = 0; i < d.jointCount(); ++i) {
         const double phase = static_cast<double>(i);
         JointCommand c;
         c.position = static_cast<float>(wave(k, 0.8, phase));
         c.velocity = static_cast<float>(wave(k, 2.0, phase + 1.0));
         c.torque = static_cast<float>(wave(k, 1.0, phase + 2.0));
-        (void)d.set_joint(i, c);
+        (void)d.setJoint(i, c);
       }
     };
     for (k = 0; k < 40; ++k) {
@@ -308,8 +308,8 @@ TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over e
       face.cycle();
     }
     CHECK(dev.ready());
-    named.bus.advance_to(named.t);
-    face.bus.advance_to(face.t);
+    named.bus.advanceTo(named.t);
+    face.bus.advanceTo(face.t);
     CHECK(named.log.frames().size() > 150u);
     CHECK(named.log.frames() == face.log.frames());
     // Flat index 7 + j is joint j of the second board.
@@ -324,7 +324,7 @@ TEST_CASE("drivers: device interface: the FD hand's flat joint index runs over e
       CHECK(face.board_b->position(12) != 0.0f);
     }
     // Quick stop: the boards are commanded to HOLD.
-    dev.request_quick_stop(face.t);
+    dev.requestQuickStop(face.t);
     face.cycle();
     face.cycle();
     CHECK(face.board_a->mode() == MRQP_FW_HAND_MODE_HOLD);
@@ -339,20 +339,20 @@ TEST_CASE("drivers: device interface: the F/T driver through WrenchDevice", "[dr
   REQUIRE(face.driver != nullptr);
   WrenchDevice& dev = *face.driver;
   CHECK(std::string(dev.kind()) == "ft");
-  CHECK(dev.sensor_count() == 1u);
+  CHECK(dev.sensorCount() == 1u);
   named.driver->start(0);
   dev.start(0);
   CHECK_FALSE(dev.ready());
   const std::array<double, 6> w{{12.5, -3.0, 40.0, 0.5, -0.25, 1.0}};
-  named.sensor->set_wrench(w);
-  face.sensor->set_wrench(w);
+  named.sensor->setWrench(w);
+  face.sensor->setWrench(w);
   for (int k = 0; k < 10; ++k) {
     named.cycle();
     face.cycle();
   }
   CHECK(dev.ready());
-  named.bus.advance_to(named.t);
-  face.bus.advance_to(face.t);
+  named.bus.advanceTo(named.t);
+  face.bus.advanceTo(face.t);
   CHECK(named.log.frames().size() >= 30u);
   CHECK(named.log.frames() == face.log.frames());
   const WrenchFeedback fb = dev.wrench(0);

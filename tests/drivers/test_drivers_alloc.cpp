@@ -88,7 +88,7 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   SimBus arm_bus;
   SimNodeConfig mc;
   mc.rx_queue = 1024;
-  SimNode* arm_master = arm_bus.add_node(mc);
+  SimNode* arm_master = arm_bus.addNode(mc);
   std::vector<std::unique_ptr<drvtest::FakeCia402Drive>> drives;
   ArmConfig ac;
   ac.cycle_period = period;
@@ -100,21 +100,21 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
     drvtest::FakeDriveOptions o;
     o.node = n;
     o.initial_position = 100 * n;
-    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*arm_bus.add_node(SimNodeConfig{}), o));
+    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*arm_bus.addNode(SimNodeConfig{}), o));
     ArmDriveConfig d;
     d.node = n;
     d.position_min = -3.0;
     d.position_max = 3.0;
     ac.drives.push_back(d);
   }
-  drvtest::FakeFtSensor ft_fake(*arm_bus.add_node(SimNodeConfig{}), 0x30, false);
-  ft_fake.set_wrench({1.0, 2.0, 3.0, 0.1, 0.2, 0.3});
+  drvtest::FakeFtSensor ft_fake(*arm_bus.addNode(SimNodeConfig{}), 0x30, false);
+  ft_fake.setWrench({1.0, 2.0, 3.0, 0.1, 0.2, 0.3});
   BusRouter arm_router(*arm_master);
 
   // MIT hand bus: 3 motors.
   SimBus mit_bus;
-  SimNode* mit_master = mit_bus.add_node(mc);
-  drvtest::FakeMitMotors mit_fake(*mit_bus.add_node(SimNodeConfig{}));
+  SimNode* mit_master = mit_bus.addNode(mc);
+  drvtest::FakeMitMotors mit_fake(*mit_bus.addNode(SimNodeConfig{}));
   MitHandConfig hc;
   for (std::uint8_t id = 1; id <= 3; ++id) {
     mit_fake.add(id);
@@ -130,17 +130,17 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   SimBus fd_bus(fdc);
   SimNodeConfig fdm = mc;
   fdm.fd = true;
-  SimNode* fd_master = fd_bus.add_node(fdm);
+  SimNode* fd_master = fd_bus.addNode(fdm);
   SimNodeConfig fdn;
   fdn.fd = true;
-  drvtest::FakeHandBoard board_fake(*fd_bus.add_node(fdn), 0, 20);
+  drvtest::FakeHandBoard board_fake(*fd_bus.addNode(fdn), 0, 20);
   FdHandConfig bc;
   HandBoardConfig hb;
   hb.board = 0;
   hb.joints = 20;
   bc.boards.push_back(hb);
   // ... and an IMU (24-byte FD frames) sampling on this driver's SYNC.
-  drvtest::FakeImu imu_fake(*fd_bus.add_node(fdn), 0x40);
+  drvtest::FakeImu imu_fake(*fd_bus.addNode(fdn), 0x40);
   imu_fake.sample().angular_velocity[2] = 0.5;
   ImuConfig ic;
   ic.produce_sync = true;
@@ -168,8 +168,8 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
 
   // The start-up checks (allocate, outside the cycle).
   BusBudget budget(BusSpec{"arm", 1000000, 0, 250.0, 0.8});
-  arm->declare_traffic(0, budget);
-  ft->declare_traffic(0, budget);
+  arm->declareTraffic(0, budget);
+  ft->declareTraffic(0, budget);
   std::string msg;
   REQUIRE(budget.check(&msg));
 
@@ -185,9 +185,9 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   for (int k = 0; k < kCycles; ++k, t += period) {
     const long before = g_count.load(std::memory_order_relaxed);
 
-    arm_bus.advance_to(t);
-    mit_bus.advance_to(t);
-    fd_bus.advance_to(t);
+    arm_bus.advanceTo(t);
+    mit_bus.advanceTo(t);
+    fd_bus.advanceTo(t);
     arm_router.poll(t);
     mit_router.poll(t);
     fd_router.poll(t);
@@ -205,42 +205,42 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
       ft_started = true;
     }
     if (k == 60) {
-      arm->request_enable(t);
-      mit->request_enable(t);
-      hand->request_enable(t);
+      arm->requestEnable(t);
+      mit->requestEnable(t);
+      hand->requestEnable(t);
     }
     if (k == 200) {
-      ft->request_tare(0, true, t);
+      ft->requestTare(0, true, t);
     }
     const double phase = 2.0 * M_PI * static_cast<double>(k) / 500.0;
-    if (arm->all_enabled()) {
-      for (std::size_t i = 0; i < arm->drive_count(); ++i) {
+    if (arm->allEnabled()) {
+      for (std::size_t i = 0; i < arm->driveCount(); ++i) {
         const double target = 0.5 * std::sin(phase + static_cast<double>(i));
         // Every 1000th cycle a NaN arrives from the "controller": refused, never sent.
-        (void)arm->set_position(i, k % 1000 == 999 && i == 3 ? std::nan("") : target);
+        (void)arm->setPosition(i, k % 1000 == 999 && i == 3 ? std::nan("") : target);
         sink += arm->drive(i).position;
       }
     }
-    if (mit->all_on()) {
-      for (std::size_t i = 0; i < mit->motor_count(); ++i) {
+    if (mit->allOn()) {
+      for (std::size_t i = 0; i < mit->motorCount(); ++i) {
         const mrqp_fw_mit_cmd c{static_cast<float>(0.2 * std::sin(phase)), 0.0f, 20.0f, 0.5f, 0.0f};
-        (void)mit->set_command(i, c);
+        (void)mit->setCommand(i, c);
         sink += mit->motor(i).position;
       }
     }
-    if (hand->all_enabled()) {
+    if (hand->allEnabled()) {
       for (std::size_t j = 0; j < 20; ++j) {
-        (void)hand->set_joint(0, j, static_cast<float>(0.3 * std::cos(phase)), 0.0f, 0.0f);
+        (void)hand->setJoint(0, j, static_cast<float>(0.3 * std::cos(phase)), 0.0f, 0.0f);
         sink += hand->joint(0, j).position;
       }
     }
     sink += ft->sensor(0).wrench[2];
     sink += static_cast<const ImuDevice&>(*imu).imu(0).angular_velocity[2];
     if (k == 5000) {
-      arm->request_disable(t);  // and back: the whole state machine runs inside the window
+      arm->requestDisable(t);  // and back: the whole state machine runs inside the window
     }
     if (k == 5100) {
-      arm->request_enable(t);
+      arm->requestEnable(t);
     }
 
     arm->transmit(t);
@@ -254,12 +254,12 @@ TEST_CASE("drivers: 10,000 cycles of the whole robot allocate nothing", "[driver
   CHECK(allocations == 0);
   // The run did what it should: booted, enabled, moved, and only the injected NaN were flagged.
   CHECK(arm->phase() == ArmPhase::Running);
-  CHECK(arm->all_enabled());
-  CHECK(mit->all_on());
-  CHECK(hand->all_enabled());
+  CHECK(arm->allEnabled());
+  CHECK(mit->allOn());
+  CHECK(hand->allEnabled());
   CHECK(imu->ready());
   CHECK(imu->state(0).angular_velocity[2] == Approx(0.5));
-  CHECK(!ft->tare_pending(0));
+  CHECK(!ft->tarePending(0));
   CHECK(arm->faults().devices[3].refused_setpoints == 10u);
   CHECK((all_flags & ~fault::kSetpointRefused) == 0u);
   CHECK(cycles_with_faults == 10u);
@@ -280,8 +280,8 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
 
   // MIT bus: 3 motors on one node; classic bus: an F/T sensor; FD bus: a hand board and an IMU.
   SimBus mit_bus;
-  SimNode* mit_master = mit_bus.add_node(mc);
-  SimNode& mit_node = *mit_bus.add_node(SimNodeConfig{});
+  SimNode* mit_master = mit_bus.addNode(mc);
+  SimNode& mit_node = *mit_bus.addNode(SimNodeConfig{});
   drvtest::IdealJointHost mit_host(mit_node, false);
   drvtest::EmulatedNode<EmulatedMitMotor> mit_emu(mit_node);
   std::vector<std::unique_ptr<EmulatedMitMotor>> motors;
@@ -299,8 +299,8 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
   BusRouter mit_router(*mit_master);
 
   SimBus ft_bus;
-  SimNode* ft_master = ft_bus.add_node(mc);
-  SimNode& ft_node = *ft_bus.add_node(SimNodeConfig{});
+  SimNode* ft_master = ft_bus.addNode(mc);
+  SimNode& ft_node = *ft_bus.addNode(SimNodeConfig{});
   drvtest::ConstantFtHost ft_host(ft_node);
   ft_host.value = {{1.0, 2.0, 3.0, 0.1, 0.2, 0.3}};
   drvtest::EmulatedNode<EmulatedFtSensor> ft_emu(ft_node);
@@ -315,10 +315,10 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
   SimBus fd_bus(fdc);
   SimNodeConfig fdm = mc;
   fdm.fd = true;
-  SimNode* fd_master = fd_bus.add_node(fdm);
+  SimNode* fd_master = fd_bus.addNode(fdm);
   SimNodeConfig fdn;
   fdn.fd = true;
-  SimNode& board_node = *fd_bus.add_node(fdn);
+  SimNode& board_node = *fd_bus.addNode(fdn);
   drvtest::IdealJointHost board_host(board_node, true);
   drvtest::EmulatedNode<EmulatedHandBoard> board_emu(board_node);
   EmulatedHandBoard::Options bo;
@@ -326,7 +326,7 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
   bo.command_timeout = milliseconds(20);
   EmulatedHandBoard board(board_host, bo);
   board_emu.add(board);
-  SimNode& imu_node = *fd_bus.add_node(fdn);
+  SimNode& imu_node = *fd_bus.addNode(fdn);
   drvtest::ConstantImuHost imu_host(imu_node);
   drvtest::EmulatedNode<EmulatedImu> imu_emu(imu_node);
   EmulatedImu::Options io;
@@ -368,9 +368,9 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
   }
   for (int k = 0; k < 3000; ++k, t += period) {
     const long before = g_count.load(std::memory_order_relaxed);
-    mit_bus.advance_to(t);
-    ft_bus.advance_to(t);
-    fd_bus.advance_to(t);
+    mit_bus.advanceTo(t);
+    ft_bus.advanceTo(t);
+    fd_bus.advanceTo(t);
     mit_router.poll(t);
     ft_router.poll(t);
     fd_router.poll(t);
@@ -379,22 +379,22 @@ TEST_CASE("drivers: the emulated firmware and its drivers allocate nothing in th
     }
     if (k == 10) {
       for (Device* d : devices) {
-        d->request_enable(t);
+        d->requestEnable(t);
       }
     }
     const double phase = 2.0 * M_PI * static_cast<double>(k) / 500.0;
     for (JointDevice* j : {static_cast<JointDevice*>(mit.get()), static_cast<JointDevice*>(hand.get())}) {
-      for (std::size_t i = 0; i < j->joint_count(); ++i) {
+      for (std::size_t i = 0; i < j->jointCount(); ++i) {
         JointCommand c;
         c.position = 0.3 * std::sin(phase + static_cast<double>(i));
         c.stiffness = 20.0;
         c.damping = 0.5;
-        (void)j->set_joint(i, c);
+        (void)j->setJoint(i, c);
       }
     }
     if (k == 1500) {
-      motors[1]->corrupt_replies(1);
-      imu_dev.corrupt_samples(1);
+      motors[1]->corruptReplies(1);
+      imu_dev.corruptSamples(1);
     }
     for (Device* d : devices) {
       d->transmit(t);
@@ -423,7 +423,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   SimNodeConfig mc;
   mc.rx_queue = 1024;
   mc.echo_own = true;
-  SimNode* master = bus.add_node(mc);
+  SimNode* master = bus.addNode(mc);
   std::vector<std::unique_ptr<drvtest::FakeCia402Drive>> drives;
   ArmConfig ac;
   ac.cycle_period = period;
@@ -433,7 +433,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
     drvtest::FakeDriveOptions o;
     o.node = n;
     o.profile = mrqp::emulation::VendorProfile::strict();
-    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*bus.add_node(SimNodeConfig{}), o));
+    drives.push_back(std::make_unique<drvtest::FakeCia402Drive>(*bus.addNode(SimNodeConfig{}), o));
     ArmDriveConfig d;
     d.node = n;
     d.device_type = 0x192;
@@ -445,7 +445,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   REQUIRE(arm != nullptr);
   TimeNs t = 0;
   auto cycle = [&]() {
-    bus.advance_to(t);
+    bus.advanceTo(t);
     router.poll(t);
     const std::uint32_t flags = arm->update(t).flags;
     arm->transmit(t);
@@ -455,7 +455,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   arm->start(t);
   for (int k = 0; k < 200 && arm->phase() != ArmPhase::Running; ++k) cycle();
   REQUIRE(arm->phase() == ArmPhase::Running);
-  arm->request_enable(t);
+  arm->requestEnable(t);
   for (int k = 0; k < 50 && !arm->ready(); ++k) cycle();
   REQUIRE(arm->ready());
 
@@ -463,7 +463,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   const long before = g_count.load();
   t += 2 * period;  // the SYNC gap
   for (int k = 0; k < 50; ++k) cycle();
-  const std::size_t started = arm->request_recovery(t);
+  const std::size_t started = arm->requestRecovery(t);
   for (int k = 0; k < 100 && !recovered; ++k) {
     cycle();
     recovered = arm->ready();
@@ -472,15 +472,15 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   for (int k = 0; k < 5; ++k) cycle();
   drives[1]->power(true);
   for (int k = 0; k < 30; ++k) cycle();
-  (void)arm->request_recovery(t);
+  (void)arm->requestRecovery(t);
   for (int k = 0; k < 200 && !rebooted_back; ++k) {
     cycle();
     rebooted_back = arm->ready();
   }
-  arm->request_safe_exit(t);
+  arm->requestSafeExit(t);
   for (int k = 0; k < 100 && !exited; ++k) {
     cycle();
-    exited = arm->safe_exit_done();
+    exited = arm->safeExitDone();
   }
   const long allocations = g_count.load() - before;
   CHECK(allocations == 0);
@@ -488,7 +488,7 @@ TEST_CASE("drivers: recovery and safe exit of strict drives allocate nothing", "
   CHECK(recovered);
   CHECK(rebooted_back);
   CHECK(exited);
-  bus.advance_to(t);  // the NMT commands on the wire
+  bus.advanceTo(t);  // the NMT commands on the wire
   CHECK(drives[0]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
   CHECK(drives[1]->nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);
 }

@@ -32,7 +32,7 @@ namespace {
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
   explicit MitRig(bool emulated) : SingleBusRig(false, milliseconds(1)) {
-    SimNode& n = *bus.add_node(SimNodeConfig{});
+    SimNode& n = *bus.addNode(SimNodeConfig{});
     MitHandConfig c;
     if (emulated) {
       host = std::make_unique<drvtest::IdealJointHost>(n, false);
@@ -62,17 +62,17 @@ struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
   std::vector<std::unique_ptr<EmulatedMitMotor>> motors;
 };
 
-void mit_program(MitRig& r, int k) {
+void mitProgram(MitRig& r, int k) {
   if (k == 2) {
-    r.driver->request_enable(r.t);
+    r.driver->requestEnable(r.t);
   }
   if (k == 40) {
-    r.driver->request_disable(r.t);
+    r.driver->requestDisable(r.t);
   }
   for (std::size_t i = 0; i < 3; ++i) {
     const float p = static_cast<float>(0.8 * std::sin(0.1 * k + static_cast<double>(i)));
     const mrqp_fw_mit_cmd c{p, 0.5f, 30.0f + 5.0f * static_cast<float>(i), 0.7f, -0.25f};
-    (void)r.driver->set_command(i, c);
+    (void)r.driver->setCommand(i, c);
   }
 }
 
@@ -80,7 +80,7 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
   explicit FdRig(bool emulated) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
-    SimNode& n = *bus.add_node(bcfg);
+    SimNode& n = *bus.addNode(bcfg);
     if (emulated) {
       host = std::make_unique<drvtest::IdealJointHost>(n, true);
       node = std::make_unique<drvtest::EmulatedNode<EmulatedHandBoard>>(n);
@@ -105,14 +105,14 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
   std::unique_ptr<EmulatedHandBoard> board;
 };
 
-void fd_program(FdRig& r, int k) {
+void fdProgram(FdRig& r, int k) {
   if (k == 2) {
-    r.driver->request_enable(r.t);
+    r.driver->requestEnable(r.t);
   }
   for (std::size_t j = 0; j < 20; ++j) {
     const double ph = 0.1 * k + 0.3 * static_cast<double>(j);
-    (void)r.driver->set_joint(0, j, static_cast<float>(std::sin(ph)), static_cast<float>(2.0 * std::cos(ph)),
-                              static_cast<float>(0.5 * std::sin(2.0 * ph)));
+    (void)r.driver->setJoint(0, j, static_cast<float>(std::sin(ph)), static_cast<float>(2.0 * std::cos(ph)),
+                             static_cast<float>(0.5 * std::sin(2.0 * ph)));
   }
 }
 
@@ -120,7 +120,7 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
   FtRig(bool emulated, bool fd) : SingleBusRig(fd, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = fd;
-    SimNode& n = *bus.add_node(nc);
+    SimNode& n = *bus.addNode(nc);
     const std::array<double, 6> w{{10.0, -20.0, 30.5, 0.25, -0.5, 1.125}};
     if (emulated) {
       host = std::make_unique<drvtest::ConstantFtHost>(n);
@@ -135,7 +135,7 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
       node->add(*sensor);
     } else {
       fake = std::make_unique<drvtest::FakeFtSensor>(n, 0x30, fd);
-      fake->set_wrench(w);
+      fake->setWrench(w);
     }
     FtConfig c;
     c.produce_sync = true;
@@ -160,7 +160,7 @@ struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
   explicit ImuRig(bool emulated, TimeNs align_until = 0) : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = true;
-    SimNode& n = *bus.add_node(nc);
+    SimNode& n = *bus.addNode(nc);
     mrqp::emulation::ImuValues v;
     v.orientation = {{0.6, 0.0, 0.8, 0.0}};
     v.angular_velocity = {{0.5, -1.25, 3.0}};
@@ -202,13 +202,13 @@ struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
 
 template <class Rig>
 std::vector<std::string> wire(Rig& r) {
-  r.bus.advance_to(r.t);
+  r.bus.advanceTo(r.t);
   return r.log.frames();
 }
 
 /// Cycles until `flag` is reported (at most `max` cycles); the number of cycles, or -1.
 template <class Rig>
-int cycles_until(Rig& r, std::uint32_t flag, int max = 20) {
+int cyclesUntil(Rig& r, std::uint32_t flag, int max = 20) {
   for (int k = 1; k <= max; ++k) {
     if (r.cycle().has(flag)) {
       return k;
@@ -226,8 +226,8 @@ TEST_CASE("emulation: MIT motors put the frames of the fake on the wire and serv
   REQUIRE(fake.driver != nullptr);
   REQUIRE(emu.driver != nullptr);
   for (int k = 0; k < 50; ++k) {
-    fake.hook = [k](MitRig& r) { mit_program(r, k); };
-    emu.hook = [k](MitRig& r) { mit_program(r, k); };
+    fake.hook = [k](MitRig& r) { mitProgram(r, k); };
+    emu.hook = [k](MitRig& r) { mitProgram(r, k); };
     fake.cycle();
     emu.cycle();
     if (k == 30) {
@@ -256,28 +256,28 @@ TEST_CASE("emulation: MIT motor fault switches", "[drivers][emulation][hand]") {
     r.cycle();
   }
   REQUIRE(r.driver->faults().flags == 0u);
-  r.motors[1]->corrupt_replies(1);
-  CHECK(cycles_until(r, fault::kCorruptFrame) >= 1);
+  r.motors[1]->corruptReplies(1);
+  CHECK(cyclesUntil(r, fault::kCorruptFrame) >= 1);
   CHECK(r.driver->faults().devices[1].corrupt_frames == 1u);
-  r.motors[2]->set_silent(true);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) == 3);  // 3 cycles without a reply
+  r.motors[2]->setSilent(true);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) == 3);  // 3 cycles without a reply
   CHECK(r.driver->faults().devices[2].flags == fault::kFeedbackMissing);
-  r.motors[2]->set_silent(false);
+  r.motors[2]->setSilent(false);
   r.cycle();
   CHECK(r.cycle().flags == 0u);
   // A tripped controller stops answering: feedback missing until it is powered on again.
-  r.motors[0]->raise_fault(r.t);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) == 3);
-  r.motors[0]->power_on(r.t);
+  r.motors[0]->raiseFault(r.t);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) == 3);
+  r.motors[0]->powerOn(r.t);
   r.cycle();
   CHECK(r.cycle().flags == 0u);
   // Stale: replies keep coming with the last measurement although the joint moves.
-  r.motors[0]->set_stale(true);
+  r.motors[0]->setStale(true);
   r.host->p[0] = 1.0f;
   r.cycle();
   r.cycle();
   CHECK(r.driver->motor(0).position == Approx(0.0).margin(1e-3));
-  r.motors[0]->set_stale(false);
+  r.motors[0]->setStale(false);
   r.cycle();
   r.cycle();
   CHECK(r.driver->motor(0).position == Approx(1.0).margin(1e-3));
@@ -289,15 +289,15 @@ TEST_CASE("emulation: the hand board puts the frames of the fake on the wire", "
   REQUIRE(fake.driver != nullptr);
   REQUIRE(emu.driver != nullptr);
   for (int k = 0; k < 30; ++k) {
-    fake.hook = [k](FdRig& r) { fd_program(r, k); };
-    emu.hook = [k](FdRig& r) { fd_program(r, k); };
+    fake.hook = [k](FdRig& r) { fdProgram(r, k); };
+    emu.hook = [k](FdRig& r) { fdProgram(r, k); };
     fake.cycle();
     emu.cycle();
   }
   const auto a = wire(fake);
   CHECK(a.size() > 100u);
   CHECK(a == wire(emu));
-  CHECK(emu.driver->all_enabled());
+  CHECK(emu.driver->allEnabled());
   // The board's servo: its PD on the last commanded position, velocity and torque (k = 29).
   const mrqp::emulation::ServoCommand& s = emu.board->servo(7);
   CHECK(s.enabled);
@@ -313,44 +313,44 @@ TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout",
   REQUIRE(r.driver != nullptr);
   r.hook = [](FdRig& rr) {
     if (rr.t == milliseconds(2)) {
-      rr.driver->request_enable(rr.t);
+      rr.driver->requestEnable(rr.t);
     }
   };
   for (int k = 0; k < 8; ++k) {
     r.cycle();
   }
-  REQUIRE(r.driver->all_enabled());
+  REQUIRE(r.driver->allEnabled());
   REQUIRE(r.driver->faults().flags == 0u);
-  r.board->corrupt_feedback(1);
-  CHECK(cycles_until(r, fault::kCorruptFrame) >= 1);
+  r.board->corruptFeedback(1);
+  CHECK(cyclesUntil(r, fault::kCorruptFrame) >= 1);
   r.cycle();
   r.cycle();
-  r.board->set_stale(true);
-  CHECK(cycles_until(r, fault::kSampleLost) >= 1);
-  r.board->set_stale(false);
-  r.board->set_silent(true);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
-  r.board->set_silent(false);
+  r.board->setStale(true);
+  CHECK(cyclesUntil(r, fault::kSampleLost) >= 1);
+  r.board->setStale(false);
+  r.board->setSilent(true);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) >= 1);
+  r.board->setSilent(false);
   r.cycle();
   r.cycle();
-  r.board->raise_fault(r.t);
-  CHECK(cycles_until(r, fault::kDeviceFault) >= 1);
+  r.board->raiseFault(r.t);
+  CHECK(cyclesUntil(r, fault::kDeviceFault) >= 1);
   CHECK_FALSE(r.host->servo[3].enabled);
   // Cleared by a DISABLED command, then enabled again.
-  r.driver->request_disable(r.t);
+  r.driver->requestDisable(r.t);
   r.cycle();
   r.cycle();
-  r.driver->request_enable(r.t);
+  r.driver->requestEnable(r.t);
   r.hook = nullptr;
   for (int k = 0; k < 5; ++k) {
     r.cycle();
   }
-  CHECK(r.driver->all_enabled());
+  CHECK(r.driver->allEnabled());
   CHECK((r.board->status() & MRQP_FW_HAND_STATUS_FAULT) == 0u);
   // Quick stop (HOLD): the servo holds the position measured when HOLD began.
-  r.bus.advance_to(r.t);  // the last POSITION command applied
+  r.bus.advanceTo(r.t);  // the last POSITION command applied
   r.host->p[4] = 0.25f;
-  r.driver->request_quick_stop(r.t);
+  r.driver->requestQuickStop(r.t);
   r.cycle();
   r.cycle();
   CHECK(r.board->mode() == MRQP_FW_HAND_MODE_HOLD);
@@ -359,7 +359,7 @@ TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout",
 
   // The command timeout: a board with 5 ms that stops receiving commands goes to HOLD.
   SimBus bus;
-  SimNode& n = *bus.add_node(SimNodeConfig{});
+  SimNode& n = *bus.addNode(SimNodeConfig{});
   drvtest::IdealJointHost host(n, true);
   EmulatedHandBoard::Options o;
   o.joints = 2;
@@ -372,14 +372,14 @@ TEST_CASE("emulation: hand board fault switches, HOLD and the command timeout",
   mrqp_fw_frame f;
   const mrqp_fw_hand_scale scale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
   REQUIRE(!mrqp_fw_pack_failed(mrqp_fw_hand_pack_cmd(&scale, 0, &c, &f, nullptr)));
-  CHECK(b.on_frame(f, milliseconds(1)));
-  CHECK(b.next_event() == milliseconds(6));
+  CHECK(b.onFrame(f, milliseconds(1)));
+  CHECK(b.nextEvent() == milliseconds(6));
   b.advance(milliseconds(5));
   CHECK(b.mode() == MRQP_FW_HAND_MODE_TORQUE);
   b.advance(milliseconds(6));
   CHECK(b.mode() == MRQP_FW_HAND_MODE_HOLD);
   CHECK((b.status() & MRQP_FW_HAND_STATUS_COMMAND_TIMEOUT) != 0u);
-  CHECK(b.next_event() == EmulatedHandBoard::kNever);
+  CHECK(b.nextEvent() == EmulatedHandBoard::kNever);
 }
 
 TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, faults",
@@ -391,8 +391,8 @@ TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, fa
     REQUIRE(emu.driver != nullptr);
     for (int k = 0; k < 20; ++k) {
       if (k == 5) {
-        fake.driver->request_tare(0, true, fake.t);
-        emu.driver->request_tare(0, true, emu.t);
+        fake.driver->requestTare(0, true, fake.t);
+        emu.driver->requestTare(0, true, emu.t);
       }
       fake.cycle();
       emu.cycle();
@@ -401,29 +401,29 @@ TEST_CASE("emulation: the F/T sensor puts the frames of the fake on the wire, fa
     CHECK(a.size() >= (fd ? 40u : 60u));
     CHECK(a == wire(emu));
     CHECK(emu.sensor->tared());
-    CHECK_FALSE(emu.driver->tare_pending(0));
+    CHECK_FALSE(emu.driver->tarePending(0));
     REQUIRE(emu.driver->faults().flags == 0u);
 
     FtRig& r = emu;
-    r.sensor->corrupt_samples(1);
-    CHECK(cycles_until(r, fault::kCorruptFrame) >= 1);
+    r.sensor->corruptSamples(1);
+    CHECK(cyclesUntil(r, fault::kCorruptFrame) >= 1);
     r.cycle();
     r.cycle();
-    r.sensor->set_stale(true);
-    CHECK(cycles_until(r, fault::kDeviceWarning) >= 1);
-    CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
-    r.sensor->set_stale(false);
-    r.sensor->raise_fault();
-    CHECK(cycles_until(r, fault::kDeviceFault) >= 1);
-    r.sensor->clear_fault();
-    r.sensor->set_silent(true);
-    CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
-    r.sensor->set_silent(false);
+    r.sensor->setStale(true);
+    CHECK(cyclesUntil(r, fault::kDeviceWarning) >= 1);
+    CHECK(cyclesUntil(r, fault::kFeedbackMissing) >= 1);
+    r.sensor->setStale(false);
+    r.sensor->raiseFault();
+    CHECK(cyclesUntil(r, fault::kDeviceFault) >= 1);
+    r.sensor->clearFault();
+    r.sensor->setSilent(true);
+    CHECK(cyclesUntil(r, fault::kFeedbackMissing) >= 1);
+    r.sensor->setSilent(false);
     if (!fd) {
       r.cycle();
       r.cycle();
-      r.sensor->drop_moments(1);
-      CHECK(cycles_until(r, fault::kTornPair) >= 1);
+      r.sensor->dropMoments(1);
+      CHECK(cyclesUntil(r, fault::kTornPair) >= 1);
     }
   }
 }
@@ -455,19 +455,19 @@ TEST_CASE("emulation: the IMU puts the frames of the fake on the wire, aligning 
   r.cycle();
   CHECK(r.driver->ready());
   REQUIRE(r.cycle().flags == 0u);
-  r.imu->corrupt_samples(2);
-  CHECK(cycles_until(r, fault::kCorruptFrame) >= 1);
+  r.imu->corruptSamples(2);
+  CHECK(cyclesUntil(r, fault::kCorruptFrame) >= 1);
   r.cycle();
   r.cycle();
   CHECK(r.driver->faults().devices[0].corrupt_frames == 2u);
-  r.imu->set_stale(true);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
-  r.imu->set_stale(false);
-  r.imu->raise_fault();
-  CHECK(cycles_until(r, fault::kDeviceFault) >= 1);
-  r.imu->clear_fault();
-  r.imu->set_silent(true);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) >= 1);
+  r.imu->setStale(true);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) >= 1);
+  r.imu->setStale(false);
+  r.imu->raiseFault();
+  CHECK(cyclesUntil(r, fault::kDeviceFault) >= 1);
+  r.imu->clearFault();
+  r.imu->setSilent(true);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) >= 1);
 }
 
 TEST_CASE("emulation: CiA 402 drive fault switches: corrupt TPDOs, silence", "[drivers][emulation][arm]") {
@@ -480,17 +480,17 @@ TEST_CASE("emulation: CiA 402 drive fault switches: corrupt TPDOs, silence", "[d
     r.cycle();
   }
   REQUIRE(r.arm->faults().flags == 0u);
-  r.fakes[1]->corrupt_pdos(1);
-  CHECK(cycles_until(r, fault::kCorruptFrame) >= 1);
+  r.fakes[1]->corruptPdos(1);
+  CHECK(cyclesUntil(r, fault::kCorruptFrame) >= 1);
   CHECK(r.arm->faults().devices[1].corrupt_frames == 1u);
   CHECK(r.arm->faults().devices[0].corrupt_frames == 0u);
   r.cycle();
   r.cycle();
   REQUIRE(r.cycle().flags == 0u);
   // Silent: feedback missing after 3 cycles, heartbeat lost after the consumer time (250 ms).
-  r.fakes[0]->set_silent(true);
-  CHECK(cycles_until(r, fault::kFeedbackMissing) == 3);
-  const int lost = cycles_until(r, fault::kHeartbeatLost, 400);
+  r.fakes[0]->setSilent(true);
+  CHECK(cyclesUntil(r, fault::kFeedbackMissing) == 3);
+  const int lost = cyclesUntil(r, fault::kHeartbeatLost, 400);
   CHECK(lost > 100);
   CHECK(r.arm->faults().devices[1].flags == 0u);
 }

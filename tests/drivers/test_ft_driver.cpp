@@ -13,7 +13,7 @@
 #include "single_bus_rig.hpp"
 
 using namespace mrqp::drivers;
-using drvtest::make_frame;
+using drvtest::makeFrame;
 using drvtest::WireLog;
 
 namespace {
@@ -23,8 +23,8 @@ struct FtRig : drvtest::SingleBusRig<FtRig, FtSensorDriver> {
     SimNodeConfig nc;
     nc.fd = fd;
     nc.name = "master";
-    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.add_node(nc), 0x30, fd);
-    injector = bus.add_node(nc);
+    sensor = std::make_unique<drvtest::FakeFtSensor>(*bus.addNode(nc), 0x30, fd);
+    injector = bus.addNode(nc);
     FtConfig c;
     c.produce_sync = true;
     FtSensorConfig s;
@@ -51,10 +51,10 @@ mrqp_fw_frame half(unsigned cob, std::int16_t a, std::int16_t b, std::int16_t c,
   const auto ua = static_cast<std::uint16_t>(a);
   const auto ub = static_cast<std::uint16_t>(b);
   const auto uc = static_cast<std::uint16_t>(c);
-  return make_frame(cob + 0x31,
-                    {static_cast<std::uint8_t>(ua & 0xFF), static_cast<std::uint8_t>(ua >> 8),
-                     static_cast<std::uint8_t>(ub & 0xFF), static_cast<std::uint8_t>(ub >> 8),
-                     static_cast<std::uint8_t>(uc & 0xFF), static_cast<std::uint8_t>(uc >> 8), seq, status});
+  return makeFrame(cob + 0x31,
+                   {static_cast<std::uint8_t>(ua & 0xFF), static_cast<std::uint8_t>(ua >> 8),
+                    static_cast<std::uint8_t>(ub & 0xFF), static_cast<std::uint8_t>(ub >> 8),
+                    static_cast<std::uint8_t>(uc & 0xFF), static_cast<std::uint8_t>(uc >> 8), seq, status});
 }
 
 }  // namespace
@@ -62,7 +62,7 @@ mrqp_fw_frame half(unsigned cob, std::int16_t a, std::int16_t b, std::int16_t c,
 TEST_CASE("drivers: F/T classic: SYNC, the pair joined into one sample", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
-  rig.sensor->set_wrench({1.5, -2.25, 10.0, 0.125, -0.5, 0.001});
+  rig.sensor->setWrench({1.5, -2.25, 10.0, 0.125, -0.5, 0.001});
   rig.cycle();
   rig.cycle();
   const FtSensorState& s = rig.driver->sensor(0);
@@ -91,8 +91,8 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   rig.cycle();
   // Sensor 0x31 (the injector): forces of sample 5 and moments of sample 6.
   const TimeNs quiet = rig.last + microseconds(500);
-  REQUIRE(rig.injector->send_at(half(0x180, 50, 0, 0, 5, 0), quiet) == SendResult::Ok);
-  REQUIRE(rig.injector->send_at(half(0x280, 0, 0, 0, 6, 0), quiet) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(half(0x180, 50, 0, 0, 5, 0), quiet) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(half(0x280, 0, 0, 0, 6, 0), quiet) == SendResult::Ok);
   const FaultReport& r1 = rig.cycle();
   CHECK((r1.devices[1].flags & fault::kTornPair) != 0u);
   CHECK(r1.devices[1].torn_pairs == 1u);
@@ -102,9 +102,9 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   const FaultReport& r2 = rig.cycle();
   CHECK(r2.devices[1].torn_pairs == 2u);
   // A matching pair (seq 7, same status) makes a sample.
-  REQUIRE(rig.injector->send_at(half(0x180, 50, -100, 0, 7, 0), rig.last + microseconds(500)) ==
+  REQUIRE(rig.injector->sendAt(half(0x180, 50, -100, 0, 7, 0), rig.last + microseconds(500)) ==
           SendResult::Ok);
-  REQUIRE(rig.injector->send_at(half(0x280, 1000, 0, -1000, 7, 0), rig.last + microseconds(500)) ==
+  REQUIRE(rig.injector->sendAt(half(0x280, 1000, 0, -1000, 7, 0), rig.last + microseconds(500)) ==
           SendResult::Ok);
   rig.cycle();
   const FtSensorState& s = rig.driver->sensor(1);
@@ -115,15 +115,15 @@ TEST_CASE("drivers: F/T classic: torn pairs are detected, counted and dropped", 
   CHECK(s.wrench[3] == Approx(1.0));
   CHECK(s.wrench[5] == Approx(-1.0));
   // Same seq, different status: torn as well.
-  REQUIRE(rig.injector->send_at(half(0x180, 0, 0, 0, 8, 0), rig.last + microseconds(500)) == SendResult::Ok);
-  REQUIRE(rig.injector->send_at(half(0x280, 0, 0, 0, 8, MRQP_FW_FT_STATUS_OVERRANGE),
-                                rig.last + microseconds(500)) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(half(0x180, 0, 0, 0, 8, 0), rig.last + microseconds(500)) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(half(0x280, 0, 0, 0, 8, MRQP_FW_FT_STATUS_OVERRANGE),
+                               rig.last + microseconds(500)) == SendResult::Ok);
   CHECK(rig.cycle().devices[1].torn_pairs == 3u);
   CHECK(rig.driver->sensor(1).seq == 7u);
 
   // The real sensor loses a moments frame: the forces half is dropped as torn next cycle.
   CHECK(rig.cycle().devices[0].torn_pairs == 0u);
-  rig.sensor->drop_moments(1);
+  rig.sensor->dropMoments(1);
   rig.cycle();
   const FaultReport& r3 = rig.cycle();
   CHECK(r3.devices[0].torn_pairs == 1u);
@@ -137,17 +137,17 @@ TEST_CASE("drivers: F/T: sequence gaps, missing samples, status and range", "[dr
     rig.cycle();
   }
   CHECK((rig.driver->faults().devices[0].flags) == 0u);
-  rig.sensor->skip_seq(2);
+  rig.sensor->skipSeq(2);
   const FaultReport& r1 = rig.cycle();
   CHECK(r1.devices[0].lost_samples == 2u);
   CHECK((r1.devices[0].flags & fault::kSampleLost) != 0u);
-  rig.sensor->set_silent(true);
+  rig.sensor->setSilent(true);
   rig.cycle();
   rig.cycle();
   CHECK((rig.cycle().devices[0].flags & fault::kFeedbackMissing) != 0u);
-  rig.sensor->set_silent(false);
-  rig.sensor->set_wrench({150.0, 0, 0, 0, 0, 0});  // beyond the 100 N limit
-  rig.sensor->set_status_extra(MRQP_FW_FT_STATUS_FAULT);
+  rig.sensor->setSilent(false);
+  rig.sensor->setWrench({150.0, 0, 0, 0, 0, 0});  // beyond the 100 N limit
+  rig.sensor->setStatusExtra(MRQP_FW_FT_STATUS_FAULT);
   rig.cycle();
   const FaultReport& r2 = rig.cycle();
   CHECK((r2.devices[0].flags & (fault::kOutOfRange | fault::kDeviceFault)) ==
@@ -158,33 +158,33 @@ TEST_CASE("drivers: F/T: sequence gaps, missing samples, status and range", "[dr
 TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit", "[drivers][ft]") {
   FtRig rig(false);
   REQUIRE(rig.driver != nullptr);
-  rig.sensor->set_wrench({3.0, 0, 0, 0, 0, 0.5});
+  rig.sensor->setWrench({3.0, 0, 0, 0, 0, 0.5});
   rig.cycle();
   rig.cycle();
   CHECK(rig.driver->sensor(0).wrench[0] == Approx(3.0));
   const TimeNs t0 = rig.t;
   rig.hook = [](FtRig& r) {
-    CHECK(r.driver->request_tare(0, true, r.t));
+    CHECK(r.driver->requestTare(0, true, r.t));
     r.hook = nullptr;
   };
   rig.cycle();
-  CHECK(rig.driver->tare_pending(0));
+  CHECK(rig.driver->tarePending(0));
   rig.cycle();
   rig.cycle();
-  CHECK(!rig.driver->tare_pending(0));
+  CHECK(!rig.driver->tarePending(0));
   CHECK(rig.sensor->tared());
   CHECK((rig.driver->sensor(0).status & MRQP_FW_FT_STATUS_TARED) != 0u);
   CHECK(rig.driver->sensor(0).wrench[0] == Approx(0.0));
   CHECK(rig.driver->sensor(0).wrench[5] == Approx(0.0));
   // Tare command: 0x200 + node, DLC 2: command, command XOR 0xFF.
-  const auto master = rig.master_frames(t0);
+  const auto master = rig.masterFrames(t0);
   REQUIRE(master.size() >= 2u);
   CHECK(master[0] == "230#01FE");
   CHECK(master[1] == "080#");
   CHECK(rig.driver->faults().devices[0].flags == 0u);
   // A tare the sensor never confirms times out (100 ms).
   rig.hook = [](FtRig& r) {
-    CHECK(r.driver->request_tare(1, true, r.t));
+    CHECK(r.driver->requestTare(1, true, r.t));
     r.hook = nullptr;
   };
   bool timeout = false;
@@ -197,7 +197,7 @@ TEST_CASE("drivers: F/T tare: the command frame, confirmation by the status bit"
 TEST_CASE("drivers: F/T FD frame: decoded, corrupted frames dropped", "[drivers][ft]") {
   FtRig rig(true);
   REQUIRE(rig.driver != nullptr);
-  rig.sensor->set_wrench({12.345678, -0.000001, 3.0, 0.25, -0.125, 7.0});
+  rig.sensor->setWrench({12.345678, -0.000001, 3.0, 0.25, -0.125, 7.0});
   rig.cycle();
   rig.cycle();
   const FtSensorState& s = rig.driver->sensor(0);
@@ -222,13 +222,13 @@ TEST_CASE("drivers: F/T FD frame: decoded, corrupted frames dropped", "[drivers]
   mrqp_fw_frame f;
   REQUIRE(!mrqp_fw_pack_failed(mrqp_fw_ft_pack_fd(&scale, 0x31, &smp, &f)));
   f.data[3] ^= 0x10;
-  REQUIRE(rig.injector->send_at(f, rig.last + microseconds(500)) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(f, rig.last + microseconds(500)) == SendResult::Ok);
   const FaultReport& r = rig.cycle();
   CHECK(r.devices[1].corrupt_frames == 1u);
   CHECK(!rig.driver->sensor(1).valid);
   CHECK(r.buses[0].rejected_frames == 1u);
 
   BusBudget b(BusSpec{"arm", 1000000, 5000000, 1000.0, 0.8});
-  rig.driver->declare_traffic(0, b);
+  rig.driver->declareTraffic(0, b);
   CHECK(b.result().time_worst_ns == Approx(55000.0 + 2 * 105600.0));
 }

@@ -14,15 +14,15 @@
 #include "single_bus_rig.hpp"
 
 using namespace mrqp::drivers;
-using drvtest::make_frame;
+using drvtest::makeFrame;
 using drvtest::WireLog;
 
 namespace {
 
 struct MitRig : drvtest::SingleBusRig<MitRig, MitHandDriver> {
   explicit MitRig(TimeNs cycle_period = milliseconds(2)) : SingleBusRig(false, cycle_period) {
-    motors = std::make_unique<drvtest::FakeMitMotors>(*bus.add_node(SimNodeConfig{}));
-    injector = bus.add_node(SimNodeConfig{});
+    motors = std::make_unique<drvtest::FakeMitMotors>(*bus.addNode(SimNodeConfig{}));
+    injector = bus.addNode(SimNodeConfig{});
     MitHandConfig c;
     for (std::uint8_t id = 1; id <= 3; ++id) {
       motors->add(id);
@@ -42,9 +42,9 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   MitRig rig;
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
-  rig.bus.advance_to(rig.t);
+  rig.bus.advanceTo(rig.t);
   // Disabled: p = 0, v = 0, kp = 0, kd = 0, t = 0 -> codes 0x8000, 0x800, 0, 0, 0x800.
-  CHECK(rig.master_frames(0) ==
+  CHECK(rig.masterFrames(0) ==
         std::vector<std::string>{"001#8000800000000800", "002#8000800000000800", "003#8000800000000800"});
   // Replies: id, p 0x8000, v 0x800, t 0x800 (docs/protocol.md example).
   CHECK(rig.log.frames(static_cast<long>(1)) ==
@@ -56,15 +56,15 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
 
   TimeNs t0 = rig.t;
   rig.hook = [](MitRig& r) {
-    r.driver->request_enable(r.t);
+    r.driver->requestEnable(r.t);
     r.hook = nullptr;
   };
   rig.cycle();
   CHECK(rig.driver->motor(0).mode == MitMode::Enabling);
   rig.cycle();
-  CHECK(rig.driver->all_on());
+  CHECK(rig.driver->allOn());
   CHECK(rig.motors->enabled(1));
-  auto frames = rig.master_frames(t0);
+  auto frames = rig.masterFrames(t0);
   REQUIRE(frames.size() >= 3u);
   CHECK(frames[0] == "001#FFFFFFFFFFFFFFFC");
   CHECK(frames[2] == "003#FFFFFFFFFFFFFFFC");
@@ -73,10 +73,10 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   t0 = rig.t;
   rig.hook = [](MitRig& r) {
     const mrqp_fw_mit_cmd c{0.0f, 0.0f, 100.0f, 1.0f, 0.0f};
-    CHECK(r.driver->set_command(0, c) == SetpointResult::Ok);
+    CHECK(r.driver->setCommand(0, c) == SetpointResult::Ok);
   };
   rig.cycle();
-  frames = rig.master_frames(t0);
+  frames = rig.masterFrames(t0);
   REQUIRE(!frames.empty());
   CHECK(frames[0] == "001#8000800333333800");
 
@@ -84,19 +84,19 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   t0 = rig.t;
   rig.hook = [](MitRig& r) {
     const mrqp_fw_mit_cmd c{NAN, 0.0f, 100.0f, 1.0f, 0.0f};
-    CHECK(r.driver->set_command(0, c) == SetpointResult::Refused);
+    CHECK(r.driver->setCommand(0, c) == SetpointResult::Refused);
     r.hook = nullptr;
   };
   rig.cycle();
   const FaultReport& rep = rig.cycle();
   CHECK((rep.devices[0].flags & fault::kSetpointRefused) != 0u);
   CHECK(rep.devices[0].refused_setpoints == 1u);
-  REQUIRE(!rig.master_frames(t0).empty());
-  CHECK(rig.master_frames(t0)[0] == "001#8000800333333800");
+  REQUIRE(!rig.masterFrames(t0).empty());
+  CHECK(rig.masterFrames(t0)[0] == "001#8000800333333800");
   // Beyond the wire range: clamped and flagged (kp 600 > 500).
   rig.hook = [](MitRig& r) {
     const mrqp_fw_mit_cmd c{0.0f, 0.0f, 600.0f, 1.0f, 0.0f};
-    CHECK(r.driver->set_command(1, c) == SetpointResult::Limited);
+    CHECK(r.driver->setCommand(1, c) == SetpointResult::Limited);
     r.hook = nullptr;
   };
   rig.cycle();
@@ -105,15 +105,15 @@ TEST_CASE("drivers: MIT hand: zero-gain polling, enable until answered, impedanc
   // Disable: exit motor mode until answered.
   t0 = rig.t;
   rig.hook = [](MitRig& r) {
-    r.driver->request_disable(r.t);
+    r.driver->requestDisable(r.t);
     r.hook = nullptr;
   };
   rig.cycle();
   rig.cycle();
-  CHECK(rig.driver->all_off());
+  CHECK(rig.driver->allOff());
   CHECK(!rig.motors->enabled(2));
-  REQUIRE(rig.master_frames(t0).size() >= 2u);
-  CHECK(rig.master_frames(t0)[1] == "002#FFFFFFFFFFFFFFFD");
+  REQUIRE(rig.masterFrames(t0).size() >= 2u);
+  CHECK(rig.masterFrames(t0)[1] == "002#FFFFFFFFFFFFFFFD");
 }
 
 TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "[drivers][hand]") {
@@ -122,24 +122,24 @@ TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "
   for (int k = 0; k < 3; ++k) {
     rig.cycle();
   }
-  rig.motors->set_silent(2, true);
+  rig.motors->setSilent(2, true);
   CHECK(rig.cycle().devices[1].missed_cycles == 1u);
   CHECK(rig.cycle().devices[1].missed_cycles == 2u);
   const FaultReport& r = rig.cycle();
   CHECK((r.devices[1].flags & fault::kFeedbackMissing) != 0u);
   CHECK(r.devices[0].flags == 0u);
-  rig.motors->set_silent(2, false);
+  rig.motors->setSilent(2, false);
   rig.cycle();
   CHECK(rig.cycle().flags == 0u);
 
   // Injected at a quiet moment of the cycle (replies use identifier 0x000 too).
   const TimeNs quiet = rig.last + microseconds(1200);
-  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x01, 0x80, 0x00, 0x80}), quiet) ==
+  REQUIRE(rig.injector->sendAt(makeFrame(0x000, {0x01, 0x80, 0x00, 0x80}), quiet) ==
           SendResult::Ok);  // DLC 4
-  REQUIRE(rig.injector->send_at(make_frame(0x000, {0x05, 0x80, 0x00, 0x80, 0x08, 0x00}), quiet) ==
+  REQUIRE(rig.injector->sendAt(makeFrame(0x000, {0x05, 0x80, 0x00, 0x80, 0x08, 0x00}), quiet) ==
           SendResult::Ok);
-  REQUIRE(rig.injector->send_at(make_frame(0x000, {}), quiet) == SendResult::Ok);
-  REQUIRE(rig.injector->send_at(make_frame(0x055, {1}), quiet) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(makeFrame(0x000, {}), quiet) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(makeFrame(0x055, {1}), quiet) == SendResult::Ok);
   const FaultReport& r2 = rig.cycle();
   CHECK(r2.devices[0].corrupt_frames == 1u);
   CHECK((r2.devices[0].flags & fault::kCorruptFrame) != 0u);
@@ -148,14 +148,14 @@ TEST_CASE("drivers: MIT hand: missing replies, corrupted and unknown replies", "
   CHECK(rig.driver->motor(0).position == Approx(1.9e-4).margin(1e-6));
 
   // A position beyond the +/-12.5 rad wire range comes back saturated: out of range.
-  rig.motors->set_position(3, 20.0f);
+  rig.motors->setPosition(3, 20.0f);
   rig.cycle();
   const FaultReport& r3 = rig.cycle();
   CHECK((r3.devices[2].flags & fault::kOutOfRange) != 0u);
   CHECK(rig.driver->motor(2).position == Approx(12.5f));
 
   BusBudget b(BusSpec{"hand", 1000000, 0, 1000.0, 0.8});
-  rig.driver->declare_traffic(0, b);
+  rig.driver->declareTraffic(0, b);
   CHECK(b.result().nominal_bits_worst == Approx(3 * 250.0));
 }
 
@@ -165,8 +165,8 @@ struct FdRig : drvtest::SingleBusRig<FdRig, FdHandDriver> {
   FdRig() : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig bcfg;
     bcfg.fd = true;
-    board = std::make_unique<drvtest::FakeHandBoard>(*bus.add_node(bcfg), 2, 20);
-    injector = bus.add_node(bcfg);
+    board = std::make_unique<drvtest::FakeHandBoard>(*bus.addNode(bcfg), 2, 20);
+    injector = bus.addNode(bcfg);
     FdHandConfig c;
     HandBoardConfig h;
     h.board = 2;
@@ -184,7 +184,7 @@ TEST_CASE("drivers: FD hand board: two 64-byte frames each way per cycle for 20 
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
   rig.cycle();
-  rig.bus.advance_to(rig.t);
+  rig.bus.advanceTo(rig.t);
   std::vector<WireEvent> ev;
   for (const auto& e : rig.log.events) {
     if (e.start >= rig.last) {
@@ -223,17 +223,17 @@ TEST_CASE("drivers: FD hand board: enable, setpoints, NaN refused, limits", "[dr
   REQUIRE(rig.driver != nullptr);
   rig.cycle();
   rig.hook = [](FdRig& r) {
-    r.driver->request_enable(r.t);
+    r.driver->requestEnable(r.t);
     r.hook = nullptr;
   };
   rig.cycle();
   rig.cycle();
-  CHECK(rig.driver->all_enabled());
+  CHECK(rig.driver->allEnabled());
   CHECK(rig.board->mode() == MRQP_FW_HAND_MODE_POSITION);
   rig.hook = [](FdRig& r) {
-    CHECK(r.driver->set_joint(0, 5, 0.25f, 0.0f, 0.1f) == SetpointResult::Ok);
-    CHECK(r.driver->set_joint(0, 19, -1.0f, 0.5f, 0.0f) == SetpointResult::Ok);
-    CHECK(r.driver->set_joint(0, 20, 0.0f, 0.0f, 0.0f) == SetpointResult::BadIndex);
+    CHECK(r.driver->setJoint(0, 5, 0.25f, 0.0f, 0.1f) == SetpointResult::Ok);
+    CHECK(r.driver->setJoint(0, 19, -1.0f, 0.5f, 0.0f) == SetpointResult::Ok);
+    CHECK(r.driver->setJoint(0, 20, 0.0f, 0.0f, 0.0f) == SetpointResult::BadIndex);
   };
   rig.cycle();
   rig.cycle();
@@ -242,8 +242,8 @@ TEST_CASE("drivers: FD hand board: enable, setpoints, NaN refused, limits", "[dr
   CHECK(rig.driver->joint(0, 19).position == Approx(-1.0f).margin(5e-5));
   CHECK(rig.driver->joint(0, 19).velocity == Approx(0.5f).margin(0.01));
   rig.hook = [](FdRig& r) {
-    CHECK(r.driver->set_joint(0, 5, NAN, 0.0f, 0.0f) == SetpointResult::Refused);
-    CHECK(r.driver->set_joint(0, 6, 10.0f, 0.0f, 0.0f) == SetpointResult::Limited);
+    CHECK(r.driver->setJoint(0, 5, NAN, 0.0f, 0.0f) == SetpointResult::Refused);
+    CHECK(r.driver->setJoint(0, 6, 10.0f, 0.0f, 0.0f) == SetpointResult::Limited);
     r.hook = nullptr;
   };
   rig.cycle();
@@ -262,7 +262,7 @@ TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, 
     rig.cycle();
   }
   REQUIRE(rig.driver->faults().flags == 0u);
-  rig.board->skip_counter(3);  // 3 feedback frames lost
+  rig.board->skipCounter(3);  // 3 feedback frames lost
   const FaultReport& r1 = rig.cycle();
   CHECK((r1.devices[0].flags & fault::kSampleLost) != 0u);
   CHECK(r1.devices[0].lost_samples == 3u);
@@ -275,30 +275,30 @@ TEST_CASE("drivers: FD hand board: lost, corrupted, missing and stale feedback, 
   mrqp_fw_frame f;
   REQUIRE(!mrqp_fw_pack_failed(mrqp_fw_hand_pack_fb(&scale, 2, &fb, &f, nullptr)));
   f.data[8] ^= 0x01;
-  REQUIRE(rig.injector->send_at(f, rig.last + microseconds(800)) == SendResult::Ok);
+  REQUIRE(rig.injector->sendAt(f, rig.last + microseconds(800)) == SendResult::Ok);
   const FaultReport& r2 = rig.cycle();
   CHECK(r2.devices[0].corrupt_frames == 1u);
   CHECK(r2.buses[0].rejected_frames == 1u);
 
-  rig.board->set_silent(true);
+  rig.board->setSilent(true);
   rig.cycle();
   rig.cycle();
   CHECK((rig.cycle().devices[0].flags & fault::kFeedbackMissing) != 0u);
-  rig.board->set_silent(false);
+  rig.board->setSilent(false);
   rig.cycle();
   CHECK(rig.cycle().flags == 0u);
 
   // A board that stops applying commands: its sequence echo lags behind.
-  rig.board->set_frozen(true);
+  rig.board->setFrozen(true);
   rig.cycle();                                     // lag 1
   CHECK(!rig.cycle().has(fault::kStateMismatch));  // lag 2 = max_seq_lag
   CHECK((rig.cycle().devices[0].flags & fault::kStateMismatch) != 0u);
-  rig.board->set_frozen(false);
+  rig.board->setFrozen(false);
   rig.cycle();
   CHECK(rig.cycle().flags == 0u);
 
   // Status bits: fault, over-temperature.
-  rig.board->set_status_extra(MRQP_FW_HAND_STATUS_FAULT | MRQP_FW_HAND_STATUS_OVER_TEMPERATURE);
+  rig.board->setStatusExtra(MRQP_FW_HAND_STATUS_FAULT | MRQP_FW_HAND_STATUS_OVER_TEMPERATURE);
   rig.cycle();
   const FaultReport& r3 = rig.cycle();
   CHECK((r3.devices[0].flags & (fault::kDeviceFault | fault::kDeviceWarning)) ==
@@ -309,7 +309,7 @@ TEST_CASE("drivers: FD hand driver refuses a classic bus", "[drivers][hand]") {
   SimBus classic;
   SimNodeConfig mc;
   mc.fd = true;
-  SimNode* m = classic.add_node(mc);
+  SimNode* m = classic.addNode(mc);
   BusRouter router(*m);
   FdHandConfig c;
   c.boards.push_back(HandBoardConfig{});

@@ -14,7 +14,7 @@
 #include "single_bus_rig.hpp"
 
 using namespace mrqp::drivers;
-using drvtest::make_frame;
+using drvtest::makeFrame;
 
 namespace {
 
@@ -22,8 +22,8 @@ struct ImuRig : drvtest::SingleBusRig<ImuRig, ImuDriver> {
   ImuRig() : SingleBusRig(true, milliseconds(1)) {
     SimNodeConfig nc;
     nc.fd = true;
-    imu = std::make_unique<drvtest::FakeImu>(*bus.add_node(nc), 0x40);
-    injector = bus.add_node(nc);
+    imu = std::make_unique<drvtest::FakeImu>(*bus.addNode(nc), 0x40);
+    injector = bus.addNode(nc);
     ImuConfig c;
     c.produce_sync = true;
     ImuSensorConfig s;
@@ -45,7 +45,7 @@ TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[dr
   REQUIRE(rig.driver != nullptr);
   ImuDevice& dev = *rig.driver;
   CHECK(std::string(dev.kind()) == "imu");
-  CHECK(dev.imu_count() == 1u);
+  CHECK(dev.imuCount() == 1u);
   mrqp_fw_imu_sample& s = rig.imu->sample();
   s.orientation[0] = 0.6;
   s.orientation[1] = 0.0;
@@ -71,8 +71,8 @@ TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[dr
   CHECK(fb.timestamp > 0);
   CHECK_FALSE(dev.imu(1).valid);
   // One SYNC and one 24-byte FD answer per cycle.
-  rig.bus.advance_to(rig.t);
-  const auto frames = rig.log.frames_between(rig.last, rig.t);
+  rig.bus.advanceTo(rig.t);
+  const auto frames = rig.log.framesBetween(rig.last, rig.t);
   REQUIRE(frames.size() == 2u);
   CHECK(frames[0] == "080#");
   CHECK(frames[1].substr(0, 6) == "1C0##1");
@@ -81,7 +81,7 @@ TEST_CASE("drivers: IMU: samples on SYNC, decoded within half a wire step", "[dr
   BusSpec spec;
   spec.data_bps = 5000000;
   BusBudget budget(spec);
-  dev.declare_traffic(0, budget);
+  dev.declareTraffic(0, budget);
   REQUIRE(budget.lines().size() == 2u);
   CHECK(budget.lines()[1].len == 24u);
 }
@@ -139,7 +139,7 @@ TEST_CASE("drivers: IMU: aligning, stale, fault, over-range and lost samples", "
   CHECK(rig.cycle().flags == 0u);
 
   // Three samples skipped in the sequence: lost samples counted once.
-  rig.imu->skip_seq(3);
+  rig.imu->skipSeq(3);
   rig.cycle();
   rig.cycle();
   const FaultReport& r3 = rig.cycle();
@@ -147,7 +147,7 @@ TEST_CASE("drivers: IMU: aligning, stale, fault, over-range and lost samples", "
   CHECK(rig.driver->faults().devices[0].lost_samples == 3u);
 
   // Silent: feedback missing after 3 cycles, the last sample stays valid but not fresh.
-  rig.imu->set_silent(true);
+  rig.imu->setSilent(true);
   rig.cycle();
   rig.cycle();
   rig.cycle();
@@ -185,7 +185,7 @@ TEST_CASE("drivers: IMU: corrupt frames are counted and dropped", "[drivers][imu
   CHECK(rig.driver->imu(0).angular_velocity[0] == Approx(1.0));  // the bad sample was dropped
   // A classic frame on the IMU's identifier is not a sample either.
   rig.hook = [](ImuRig& r2) {
-    (void)r2.injector->send(make_frame(0x1C0, {1, 2, 3}));
+    (void)r2.injector->send(makeFrame(0x1C0, {1, 2, 3}));
     r2.hook = nullptr;
   };
   rig.cycle();
@@ -197,7 +197,7 @@ TEST_CASE("drivers: IMU: corrupt frames are counted and dropped", "[drivers][imu
 
 TEST_CASE("drivers: IMU: set-up errors name the IMU and the field", "[drivers][imu]") {
   SimBus classic;
-  SimNode* m = classic.add_node(SimNodeConfig{});
+  SimNode* m = classic.addNode(SimNodeConfig{});
   BusRouter router(*m);
   ImuConfig c;
   std::string err;

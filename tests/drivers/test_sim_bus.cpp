@@ -7,7 +7,7 @@
 #include "sim_trace.hpp"
 
 using namespace mrqp::drivers;
-using drvtest::make_frame;
+using drvtest::makeFrame;
 using drvtest::WireLog;
 
 namespace {
@@ -37,9 +37,9 @@ struct Pair {
     SimNodeConfig b;
     b.name = "b";
     b.fd = true;
-    na = bus.add_node(a);
-    nb = bus.add_node(b);
-    bus.set_tap(&log);
+    na = bus.addNode(a);
+    nb = bus.addNode(b);
+    bus.setTap(&log);
   }
   SimBus bus;
   SimNode* na;
@@ -74,7 +74,7 @@ TEST_CASE("drivers: classic frame durations equal the hand-computed bit counts",
   }
   // The 8-byte frame at 1 Mbit/s: 111 .. 135 us, i.e. 7 400 .. 9 000 frames per second.
   SimBus b;
-  CHECK(b.frame_time(classic(1, 8)) == microseconds(135));
+  CHECK(b.frameTime(classic(1, 8)) == microseconds(135));
 }
 
 TEST_CASE("drivers: CAN FD frame durations with bit-rate switch equal the hand-computed figures",
@@ -119,11 +119,11 @@ TEST_CASE("drivers: frames a bus or node cannot carry are refused", "[drivers][s
   SimBus classic_bus;  // data_bps 0: a classic bus
   SimNodeConfig cfg;
   cfg.fd = true;
-  SimNode* a = classic_bus.add_node(cfg);
+  SimNode* a = classic_bus.addNode(cfg);
   CHECK(a->send(fd(0x100, 64)) == SendResult::Invalid);
   CHECK(a->send(classic(0x800, 1)) == SendResult::Invalid);  // not an 11-bit id
-  CHECK(a->send(make_frame(0x100, {1}, MRQP_FW_FRAME_EXT)) == SendResult::Invalid);
-  CHECK(a->send(make_frame(0x100, {1}, MRQP_FW_FRAME_RTR)) == SendResult::Invalid);
+  CHECK(a->send(makeFrame(0x100, {1}, MRQP_FW_FRAME_EXT)) == SendResult::Invalid);
+  CHECK(a->send(makeFrame(0x100, {1}, MRQP_FW_FRAME_RTR)) == SendResult::Invalid);
   mrqp_fw_frame nine = classic(0x100, 8);
   nine.len = 9;
   CHECK(a->send(nine) == SendResult::Invalid);
@@ -131,20 +131,20 @@ TEST_CASE("drivers: frames a bus or node cannot carry are refused", "[drivers][s
   SimBusConfig fdc;
   fdc.data_bps = 5000000;
   SimBus fd_bus(fdc);
-  SimNode* classic_only = fd_bus.add_node(SimNodeConfig{});
+  SimNode* classic_only = fd_bus.addNode(SimNodeConfig{});
   CHECK(classic_only->send(fd(0x100, 12)) == SendResult::Invalid);
-  CHECK(!classic_only->fd_enabled());
+  CHECK(!classic_only->fdEnabled());
 }
 
 TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in the same slot",
           "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
-  bus.set_tap(&log);
-  SimNode* n1 = bus.add_node(SimNodeConfig{});
-  SimNode* n2 = bus.add_node(SimNodeConfig{});
-  SimNode* n3 = bus.add_node(SimNodeConfig{});
-  SimNode* rx = bus.add_node(SimNodeConfig{});
+  bus.setTap(&log);
+  SimNode* n1 = bus.addNode(SimNodeConfig{});
+  SimNode* n2 = bus.addNode(SimNodeConfig{});
+  SimNode* n3 = bus.addNode(SimNodeConfig{});
+  SimNode* rx = bus.addNode(SimNodeConfig{});
   REQUIRE(n1->send(classic(0x300, 8)) == SendResult::Ok);
   REQUIRE(n2->send(classic(0x100, 8)) == SendResult::Ok);
   REQUIRE(n3->send(classic(0x200, 8)) == SendResult::Ok);
@@ -156,7 +156,7 @@ TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in 
   CHECK(log.events[1].start == microseconds(135));
   CHECK(log.events[2].start == microseconds(270));
   CHECK(log.events[0].node == n2->index());
-  CHECK(rx->rx_pending() == 3u);
+  CHECK(rx->rxPending() == 3u);
   RxFrame f;
   REQUIRE(rx->receive(f) == ReceiveResult::Frame);
   CHECK(f.frame.id == 0x100u);
@@ -168,7 +168,7 @@ TEST_CASE("drivers: arbitration: the lowest identifier wins when nodes start in 
   const TimeNs t0 = bus.now();
   REQUIRE(n1->send(classic(0x700, 8)) == SendResult::Ok);
   REQUIRE(n2->send(classic(0x400, 8)) == SendResult::Ok);
-  REQUIRE(n3->send_at(classic(0x050, 8), t0 + microseconds(10)) == SendResult::Ok);
+  REQUIRE(n3->sendAt(classic(0x050, 8), t0 + microseconds(10)) == SendResult::Ok);
   bus.advance(milliseconds(1));
   CHECK(log.frames() ==
         std::vector<std::string>{"400#1122334455667788", "050#1122334455667788", "700#1122334455667788"});
@@ -185,7 +185,7 @@ TEST_CASE("drivers: each node transmits its own queue in order, classic beats FD
   CHECK(p.log.frames() == std::vector<std::string>{"300#11", "100#11"});
 
   p.log.clear();
-  SimNode* third = p.bus.add_node(SimNodeConfig{});  // classic-only receiver
+  SimNode* third = p.bus.addNode(SimNodeConfig{});  // classic-only receiver
   (void)third;
   REQUIRE(p.na->send(fd(0x123, 12)) == SendResult::Ok);
   REQUIRE(p.nb->send(classic(0x123, 2)) == SendResult::Ok);
@@ -199,13 +199,13 @@ TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive 
           "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
-  bus.set_tap(&log);
-  SimNode* a = bus.add_node(SimNodeConfig{});
+  bus.setTap(&log);
+  SimNode* a = bus.addNode(SimNodeConfig{});
   REQUIRE(a->send(classic(0x123, 8)) == SendResult::Ok);
   // Each attempt: the frame up to the ACK slot (135 - 11 bits), error flag 6 + delimiter 8 +
   // intermission 3: 141 bit times.
   for (int k = 1; k <= 16; ++k) {
-    bus.advance_to(static_cast<TimeNs>(k) * microseconds(141));
+    bus.advanceTo(static_cast<TimeNs>(k) * microseconds(141));
     REQUIRE(log.events.size() == static_cast<std::size_t>(k));
     CHECK(log.events.back().outcome == WireOutcome::NoAck);
     CHECK(log.events.back().start == static_cast<TimeNs>(k - 1) * microseconds(141));
@@ -223,7 +223,7 @@ TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive 
   CHECK(log.events.size() > 1000u);
   CHECK(log.events[17].start - log.events[16].start == microseconds(149));
   CHECK(bus.stats().delivered == 0u);
-  CHECK(a->tx_pending() == 1u);  // still retrying
+  CHECK(a->txPending() == 1u);  // still retrying
 
   // Error events as SocketCAN reports them: ACK errors, warning at 96, passive at 128.
   std::uint32_t seen = 0;
@@ -250,24 +250,24 @@ TEST_CASE("drivers: a node alone gets no ACK: TEC +8 per attempt, error passive 
   CHECK(acks > 16u);
 
   // A second node appears: the frame is acknowledged, the TEC decrements.
-  SimNode* b = bus.add_node(SimNodeConfig{});
+  SimNode* b = bus.addNode(SimNodeConfig{});
   bus.advance(milliseconds(1));
   CHECK(bus.stats().delivered == 1u);
   CHECK(a->status().tec == 127);
   CHECK(a->status().state == BusState::ErrorWarning);
-  CHECK(b->rx_pending() == 1u);
+  CHECK(b->rxPending() == 1u);
 }
 
 TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery after 128 x 11 recessive bits",
           "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
-  bus.set_tap(&log);
+  bus.setTap(&log);
   SimNodeConfig no_restart;
   no_restart.auto_recover = false;  // stays bus-off (like restart-ms 0)
-  SimNode* a = bus.add_node(no_restart);
-  SimNode* b = bus.add_node(SimNodeConfig{});
-  a->inject_tx_errors(1000);  // noise: every attempt of `a` suffers a bit error
+  SimNode* a = bus.addNode(no_restart);
+  SimNode* b = bus.addNode(SimNodeConfig{});
+  a->injectTxErrors(1000);  // noise: every attempt of `a` suffers a bit error
   REQUIRE(a->send(classic(0x123, 8)) == SendResult::Ok);
   bus.advance(milliseconds(20));
 
@@ -291,23 +291,23 @@ TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery aft
   // Recovery: 128 occurrences of 11 recessive bits on an idle bus = 1408 us after bus-off. The
   // node was flushed at bus-off (the frame is lost) and sends are refused meanwhile.
   CHECK(a->status().state == BusState::BusOff);
-  CHECK(a->tx_pending() == 0u);
+  CHECK(a->txPending() == 0u);
   CHECK(a->send(classic(0x124, 1)) == SendResult::BusOff);
 
   SimBus bus2;
   WireLog log2;
-  bus2.set_tap(&log2);
-  SimNode* c = bus2.add_node(SimNodeConfig{});
-  SimNode* d = bus2.add_node(SimNodeConfig{});
+  bus2.setTap(&log2);
+  SimNode* c = bus2.addNode(SimNodeConfig{});
+  SimNode* d = bus2.addNode(SimNodeConfig{});
   (void)d;
-  c->inject_tx_errors(32);
+  c->injectTxErrors(32);
   REQUIRE(c->send(classic(0x123, 8)) == SendResult::Ok);
-  bus2.advance_to(off_at);
+  bus2.advanceTo(off_at);
   REQUIRE(c->status().state == BusState::BusOff);
   CHECK(c->status().tec == 256);
-  bus2.advance_to(off_at + microseconds(1408) - 1);
+  bus2.advanceTo(off_at + microseconds(1408) - 1);
   CHECK(c->status().state == BusState::BusOff);
-  bus2.advance_to(off_at + microseconds(1408));
+  bus2.advanceTo(off_at + microseconds(1408));
   CHECK(c->status().state == BusState::ErrorActive);
   CHECK(c->status().tec == 0);
   CHECK(c->status().rec == 0);
@@ -327,11 +327,11 @@ TEST_CASE("drivers: bus-off after 32 transmit errors (TEC +8 each), recovery aft
 TEST_CASE("drivers: bus-off recovery counts the 11 recessive bits ending each frame of the others",
           "[drivers][simbus]") {
   SimBus bus;
-  SimNode* a = bus.add_node(SimNodeConfig{});
-  SimNode* b = bus.add_node(SimNodeConfig{});
-  SimNode* c = bus.add_node(SimNodeConfig{});
+  SimNode* a = bus.addNode(SimNodeConfig{});
+  SimNode* b = bus.addNode(SimNodeConfig{});
+  SimNode* c = bus.addNode(SimNodeConfig{});
   (void)c;
-  a->inject_tx_errors(32);
+  a->injectTxErrors(32);
   REQUIRE(a->send(classic(0x123, 8)) == SendResult::Ok);
   while (a->status().state != BusState::BusOff) {
     bus.advance(microseconds(1));
@@ -352,14 +352,14 @@ TEST_CASE("drivers: identical identifiers with different data from two nodes des
           "[drivers][simbus]") {
   SimBus bus;
   WireLog log;
-  bus.set_tap(&log);
+  bus.setTap(&log);
   SimNodeConfig no_restart;
   no_restart.auto_recover = false;
-  SimNode* a = bus.add_node(no_restart);
-  SimNode* b = bus.add_node(no_restart);
-  SimNode* c = bus.add_node(SimNodeConfig{});
-  REQUIRE(a->send(make_frame(0x181, {1})) == SendResult::Ok);
-  REQUIRE(b->send(make_frame(0x181, {2})) == SendResult::Ok);
+  SimNode* a = bus.addNode(no_restart);
+  SimNode* b = bus.addNode(no_restart);
+  SimNode* c = bus.addNode(SimNodeConfig{});
+  REQUIRE(a->send(makeFrame(0x181, {1})) == SendResult::Ok);
+  REQUIRE(b->send(makeFrame(0x181, {2})) == SendResult::Ok);
   bus.advance(milliseconds(10));
   REQUIRE(log.events.size() == 32u);
   for (const WireEvent& e : log.events) {
@@ -370,16 +370,16 @@ TEST_CASE("drivers: identical identifiers with different data from two nodes des
   CHECK(c->status().rx_frames == 0u);
   // Identical frames go out once, both transmitters succeed.
   SimBus bus2;
-  SimNode* x = bus2.add_node(SimNodeConfig{});
-  SimNode* y = bus2.add_node(SimNodeConfig{});
-  SimNode* z = bus2.add_node(SimNodeConfig{});
-  REQUIRE(x->send(make_frame(0x080, {})) == SendResult::Ok);
-  REQUIRE(y->send(make_frame(0x080, {})) == SendResult::Ok);
+  SimNode* x = bus2.addNode(SimNodeConfig{});
+  SimNode* y = bus2.addNode(SimNodeConfig{});
+  SimNode* z = bus2.addNode(SimNodeConfig{});
+  REQUIRE(x->send(makeFrame(0x080, {})) == SendResult::Ok);
+  REQUIRE(y->send(makeFrame(0x080, {})) == SendResult::Ok);
   bus2.advance(milliseconds(1));
   CHECK(bus2.stats().delivered == 1u);
   CHECK(z->status().rx_frames == 1u);
-  CHECK(x->tx_pending() == 0u);
-  CHECK(y->tx_pending() == 0u);
+  CHECK(x->txPending() == 0u);
+  CHECK(y->txPending() == 0u);
 }
 
 TEST_CASE("drivers: listen-only nodes and classic-only nodes (for FD frames) do not acknowledge",
@@ -390,12 +390,12 @@ TEST_CASE("drivers: listen-only nodes and classic-only nodes (for FD frames) do 
   SimNodeConfig tx;
   tx.fd = true;
   tx.one_shot = true;
-  SimNode* a = bus.add_node(tx);
+  SimNode* a = bus.addNode(tx);
   SimNodeConfig monitor;
   monitor.acknowledge = false;
   monitor.fd = true;
-  SimNode* m = bus.add_node(monitor);
-  SimNode* classic_only = bus.add_node(SimNodeConfig{});
+  SimNode* m = bus.addNode(monitor);
+  SimNode* classic_only = bus.addNode(SimNodeConfig{});
   REQUIRE(a->send(fd(0x100, 16)) == SendResult::Ok);
   bus.advance(milliseconds(1));
   CHECK(bus.stats().no_ack == 1u);  // one-shot: one attempt, then dropped
@@ -416,8 +416,8 @@ TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow 
   SimNodeConfig small;
   small.rx_queue = 4;
   small.tx_queue = 3;
-  SimNode* a = bus.add_node(small);
-  SimNode* b = bus.add_node(small);
+  SimNode* a = bus.addNode(small);
+  SimNode* b = bus.addNode(small);
   for (int i = 0; i < 3; ++i) {
     REQUIRE(b->send(classic(0x200 + static_cast<std::uint32_t>(i), 1)) == SendResult::Ok);
   }
@@ -428,7 +428,7 @@ TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow 
     REQUIRE(b->send(classic(0x220 + static_cast<std::uint32_t>(i), 1)) == SendResult::Ok);
   }
   bus.advance(milliseconds(1));
-  CHECK(a->rx_pending() == 4u);
+  CHECK(a->rxPending() == 4u);
   CHECK(a->status().rx_overflow == 2u);
   RxFrame f;
   REQUIRE(a->receive(f) == ReceiveResult::Frame);
@@ -437,23 +437,23 @@ TEST_CASE("drivers: receive and transmit queues have a fixed capacity, overflow 
 
 TEST_CASE("drivers: a disconnected node neither sends, receives nor acknowledges", "[drivers][simbus]") {
   SimBus bus;
-  SimNode* a = bus.add_node(SimNodeConfig{});
-  SimNode* b = bus.add_node(SimNodeConfig{});
-  b->set_connected(false);
+  SimNode* a = bus.addNode(SimNodeConfig{});
+  SimNode* b = bus.addNode(SimNodeConfig{});
+  b->setConnected(false);
   CHECK(b->send(classic(0x1, 1)) == SendResult::Down);
   REQUIRE(a->send(classic(0x2, 1)) == SendResult::Ok);
   bus.advance(microseconds(100));
   CHECK(bus.stats().no_ack == 1u);
-  b->set_connected(true);
+  b->setConnected(true);
   bus.advance(milliseconds(1));
   CHECK(bus.stats().delivered == 1u);
-  CHECK(b->rx_pending() == 1u);
+  CHECK(b->rxPending() == 1u);
 }
 
 TEST_CASE("drivers: node timers fire at their time, also while the bus is busy", "[drivers][simbus]") {
   struct Timer final : SimListener {
-    void on_receive(SimNode&, ReceiveResult, const RxFrame&) noexcept override {}
-    void on_timer(SimNode& n, TimeNs now) noexcept override {
+    void onReceive(SimNode&, ReceiveResult, const RxFrame&) noexcept override {}
+    void onTimer(SimNode& n, TimeNs now) noexcept override {
       fired = now;
       (void)n.send(classic(0x010, 0));
     }
@@ -461,11 +461,11 @@ TEST_CASE("drivers: node timers fire at their time, also while the bus is busy",
   } timer;
   SimBus bus;
   WireLog log;
-  bus.set_tap(&log);
-  SimNode* a = bus.add_node(SimNodeConfig{});
-  SimNode* b = bus.add_node(SimNodeConfig{});
-  b->set_listener(&timer);
-  b->set_timer(microseconds(50));
+  bus.setTap(&log);
+  SimNode* a = bus.addNode(SimNodeConfig{});
+  SimNode* b = bus.addNode(SimNodeConfig{});
+  b->setListener(&timer);
+  b->setTimer(microseconds(50));
   REQUIRE(a->send(classic(0x300, 8)) == SendResult::Ok);  // on the wire 0 .. 135 us
   REQUIRE(a->send(classic(0x301, 8)) == SendResult::Ok);
   bus.advance(milliseconds(1));

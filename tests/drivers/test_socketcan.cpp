@@ -14,7 +14,7 @@ using namespace mrqp::drivers;
 
 namespace {
 
-bool kernel_has_af_can() {
+bool kernelHasAfCan() {
   const int s = ::socket(PF_CAN, SOCK_RAW, 1 /* CAN_RAW */);
   if (s < 0) {
     return false;
@@ -31,7 +31,7 @@ TEST_CASE("drivers: SocketCAN: open() explains a kernel without AF_CAN", "[drive
   cfg.interface = "vcan0";
   std::string err;
   const bool ok = bus.open(cfg, &err);
-  if (kernel_has_af_can()) {
+  if (kernelHasAfCan()) {
     WARN(
         "this kernel has AF_CAN: the no-AF_CAN message is not exercised here (see "
         "test_drivers_socketcan_vcan)");
@@ -41,7 +41,7 @@ TEST_CASE("drivers: SocketCAN: open() explains a kernel without AF_CAN", "[drive
     return;
   }
   CHECK(!ok);
-  CHECK(!bus.is_open());
+  CHECK(!bus.isOpen());
   CHECK_THAT(err, Catch::Matchers::StartsWith("AF_CAN not supported by this kernel"));
   CHECK_THAT(err, Catch::Matchers::Contains("socket(AF_CAN, SOCK_RAW, CAN_RAW)"));
   CHECK_THAT(err, Catch::Matchers::Contains("SimBus"));
@@ -56,7 +56,7 @@ TEST_CASE("drivers: SocketCAN: a closed bus refuses to send and receives nothing
   RxFrame rx;
   CHECK(bus.receive(rx) == ReceiveResult::Empty);
   CHECK(bus.status().tx_failed == 1u);
-  CHECK(!bus.fd_enabled());
+  CHECK(!bus.fdEnabled());
   SocketCanConfig bad;
   bad.interface = "";
   std::string err;

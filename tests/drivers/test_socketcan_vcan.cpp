@@ -24,7 +24,7 @@ namespace {
 
 const char* kInterface = "vcan0";
 
-bool receive_one(SocketCanBus& bus, RxFrame& rx, ReceiveResult want = ReceiveResult::Frame) {
+bool receiveOne(SocketCanBus& bus, RxFrame& rx, ReceiveResult want = ReceiveResult::Frame) {
   for (int i = 0; i < 200; ++i) {
     const ReceiveResult r = bus.receive(rx);
     if (r == want) {
@@ -58,11 +58,11 @@ TEST_CASE("drivers: vcan: classic frames between two sockets, with kernel timest
   std::string err;
   REQUIRE(a.open(cfg, &err));
   REQUIRE(b.open(cfg, &err));
-  const TimeNs before = monotonic_now();
+  const TimeNs before = monotonicNow();
   REQUIRE(a.send(classic(0x123, 8)) == SendResult::Ok);
   RxFrame rx;
-  REQUIRE(receive_one(b, rx));
-  const TimeNs after = monotonic_now();
+  REQUIRE(receiveOne(b, rx));
+  const TimeNs after = monotonicNow();
   CHECK(rx.frame.id == 0x123u);
   CHECK(rx.frame.len == 8u);
   CHECK(rx.frame.flags == 0u);
@@ -90,7 +90,7 @@ TEST_CASE("drivers: vcan: ID filters", "[drivers][socketcan][vcan]") {
   REQUIRE(tx.send(classic(0x201, 1)) == SendResult::Ok);
   REQUIRE(tx.send(classic(0x181, 2)) == SendResult::Ok);
   RxFrame f;
-  REQUIRE(receive_one(rx, f));
+  REQUIRE(receiveOne(rx, f));
   CHECK(f.frame.id == 0x181u);
   ::usleep(5000);
   CHECK(rx.receive(f) == ReceiveResult::Empty);
@@ -108,14 +108,14 @@ TEST_CASE("drivers: vcan: CAN FD frames when enabled", "[drivers][socketcan][vca
     return;
   }
   REQUIRE(b.open(cfg, &err));
-  CHECK(a.fd_enabled());
+  CHECK(a.fdEnabled());
   mrqp_fw_frame f = classic(0x140, 0);
   f.len = 64;
   f.flags = MRQP_FW_FRAME_FD | MRQP_FW_FRAME_BRS;
   f.data[63] = 0xA5;
   REQUIRE(a.send(f) == SendResult::Ok);
   RxFrame rx;
-  REQUIRE(receive_one(b, rx));
+  REQUIRE(receiveOne(b, rx));
   CHECK(rx.frame.len == 64u);
   CHECK(rx.frame.flags == (MRQP_FW_FRAME_FD | MRQP_FW_FRAME_BRS));
   CHECK(rx.frame.data[63] == 0xA5);
@@ -147,7 +147,7 @@ TEST_CASE("drivers: vcan: a full send buffer is QueueFull, counted, never blocki
 
 TEST_CASE("drivers: vcan: the router drains a real socket", "[drivers][socketcan][vcan]") {
   struct Count final : FrameHandler {
-    Claim on_frame(const BusRouter&, const RxFrame& rx, TimeNs) noexcept override {
+    Claim onFrame(const BusRouter&, const RxFrame& rx, TimeNs) noexcept override {
       if (rx.frame.id == 0x081) {
         ++n;
         return Claim::Accepted;
@@ -164,13 +164,13 @@ TEST_CASE("drivers: vcan: the router drains a real socket", "[drivers][socketcan
   REQUIRE(a.open(cfg, &err));
   REQUIRE(b.open(cfg, &err));
   BusRouter router(b);
-  REQUIRE(router.add_handler(count));
+  REQUIRE(router.addHandler(count));
   for (int i = 0; i < 10; ++i) {
     REQUIRE(a.send(classic(0x081, 8)) == SendResult::Ok);
   }
   REQUIRE(a.send(classic(0x7E0, 1)) == SendResult::Ok);
   ::usleep(20000);
-  router.poll(monotonic_now());
+  router.poll(monotonicNow());
   CHECK(count.n == 10);
   CHECK(router.stats().unknown == 1u);
 }
@@ -215,17 +215,17 @@ TEST_CASE("drivers: vcan: TX echo with receive_own, in wire order, marked own",
   std::string err;
   REQUIRE(a.open(ca, &err));
   REQUIRE(b.open(cb, &err));
-  CHECK(a.echoes_own());
-  CHECK_FALSE(b.echoes_own());
+  CHECK(a.echoesOwn());
+  CHECK_FALSE(b.echoesOwn());
   REQUIRE(a.send(classic(0x000, 2)) == SendResult::Ok);  // a's frame first...
   RxFrame rx;
-  REQUIRE(receive_one(b, rx));
+  REQUIRE(receiveOne(b, rx));
   CHECK_FALSE(rx.own);
   REQUIRE(b.send(classic(0x701, 1)) == SendResult::Ok);  // ... then b's
-  REQUIRE(receive_one(a, rx));
+  REQUIRE(receiveOne(a, rx));
   CHECK(rx.own);  // a's own frame, returned (MSG_CONFIRM), before b's
   CHECK(rx.frame.id == 0x000u);
-  REQUIRE(receive_one(a, rx));
+  REQUIRE(receiveOne(a, rx));
   CHECK_FALSE(rx.own);
   CHECK(rx.frame.id == 0x701u);
   // b does not receive its own frame.

@@ -27,22 +27,22 @@ class Bench final : private EmulatedCia402Drive::Host {
   /// An expedited write of `size` bytes; returns the answer.
   std::string write(std::uint16_t index, std::uint8_t sub, unsigned size, std::uint32_t v) {
     const auto cs = static_cast<std::uint8_t>(0x23u | ((4u - size) << 2));
-    return request(drvtest::make_frame(
+    return request(drvtest::makeFrame(
         0x601, {cs, static_cast<std::uint8_t>(index & 0xFFu), static_cast<std::uint8_t>(index >> 8), sub,
                 static_cast<std::uint8_t>(v & 0xFFu), static_cast<std::uint8_t>((v >> 8) & 0xFFu),
                 static_cast<std::uint8_t>((v >> 16) & 0xFFu), static_cast<std::uint8_t>(v >> 24)}));
   }
   std::string read(std::uint16_t index, std::uint8_t sub) {
-    return request(drvtest::make_frame(0x601, {0x40, static_cast<std::uint8_t>(index & 0xFFu),
-                                               static_cast<std::uint8_t>(index >> 8), sub, 0, 0, 0, 0}));
+    return request(drvtest::makeFrame(0x601, {0x40, static_cast<std::uint8_t>(index & 0xFFu),
+                                              static_cast<std::uint8_t>(index >> 8), sub, 0, 0, 0, 0}));
   }
-  void nmt(std::uint8_t cmd) { (void)drive_.on_frame(drvtest::make_frame(0x000, {cmd, 1}), t); }
-  void sync() { (void)drive_.on_frame(drvtest::make_frame(0x080, {}), t); }
+  void nmt(std::uint8_t cmd) { (void)drive_.onFrame(drvtest::makeFrame(0x000, {cmd, 1}), t); }
+  void sync() { (void)drive_.onFrame(drvtest::makeFrame(0x080, {}), t); }
   /// Moves time to `to`, running the drive's events; returns the frames it sent meanwhile.
-  std::vector<std::string> advance_to(TimeNs to) {
+  std::vector<std::string> advanceTo(TimeNs to) {
     out.clear();
-    while (drive_.next_event() <= to) {
-      t = drive_.next_event();
+    while (drive_.nextEvent() <= to) {
+      t = drive_.nextEvent();
       drive_.advance(t);
     }
     t = to;
@@ -63,13 +63,11 @@ class Bench final : private EmulatedCia402Drive::Host {
   }
   std::string request(const mrqp_fw_frame& f) {
     out.clear();
-    (void)drive_.on_frame(f, t);
+    (void)drive_.onFrame(f, t);
     return out.empty() ? std::string("none") : out.back();
   }
-  void emit(const mrqp_fw_frame& frame, TimeNs) noexcept override {
-    out.push_back(drvtest::frame_str(frame));
-  }
-  EmulatedCia402Drive::Feedback on_sync(const EmulatedCia402Drive&, bool, TimeNs) noexcept override {
+  void emit(const mrqp_fw_frame& frame, TimeNs) noexcept override { out.push_back(drvtest::frameStr(frame)); }
+  EmulatedCia402Drive::Feedback onSync(const EmulatedCia402Drive&, bool, TimeNs) noexcept override {
     return EmulatedCia402Drive::Feedback{};
   }
 
@@ -145,26 +143,26 @@ TEST_CASE("vendor profile: SYNC timeout, EMCY 0x8100 and the behaviour of 0x1029
     b.nmt(0x01);
     REQUIRE(b.drive().nmt() == MRQP_FW_NMT_STATE_OPERATIONAL);
     // No SYNC yet: nothing is watched.
-    CHECK(b.advance_to(b.t + milliseconds(10)).empty());
+    CHECK(b.advanceTo(b.t + milliseconds(10)).empty());
     b.sync();
     // 1.5 ms after the SYNC: still fine; a little later: the communication error.
-    CHECK(b.advance_to(b.t + microseconds(1500)).empty());
-    const auto frames = b.advance_to(b.t + microseconds(10));
+    CHECK(b.advanceTo(b.t + microseconds(1500)).empty());
+    const auto frames = b.advanceTo(b.t + microseconds(10));
     CHECK(frames == std::vector<std::string>{"081#0081110000000000"});
-    CHECK(b.drive().comm_errors() == 1u);
+    CHECK(b.drive().commErrors() == 1u);
     const mrqp_fw_nmt_state expected = behaviour == 0   ? MRQP_FW_NMT_STATE_PRE_OPERATIONAL
                                        : behaviour == 1 ? MRQP_FW_NMT_STATE_OPERATIONAL
                                                         : MRQP_FW_NMT_STATE_STOPPED;
     CHECK(b.drive().nmt() == expected);
     CHECK(b.drive().state() != MRQP_FW_CIA402_FAULT);
     // Once: no second EMCY while no SYNC comes.
-    CHECK(b.advance_to(b.t + milliseconds(20)).empty());
+    CHECK(b.advanceTo(b.t + milliseconds(20)).empty());
     // Operational again and SYNC back: the error reset EMCY.
     b.nmt(0x01);
     b.out.clear();
     b.sync();
     CHECK(b.out == std::vector<std::string>{"081#0000000000000000"});
-    CHECK_FALSE(b.drive().comm_error_active());
+    CHECK_FALSE(b.drive().commErrorActive());
   }
   {
     // The power stage faults too, where configured.
@@ -174,9 +172,9 @@ TEST_CASE("vendor profile: SYNC timeout, EMCY 0x8100 and the behaviour of 0x1029
     REQUIRE(b.write(0x1006, 0, 4, 1000) == "581#6006100000000000");
     b.nmt(0x01);
     b.sync();
-    (void)b.advance_to(b.t + milliseconds(2));
+    (void)b.advanceTo(b.t + milliseconds(2));
     CHECK(b.drive().state() == MRQP_FW_CIA402_FAULT_REACTION_ACTIVE);
-    CHECK(b.drive().error_code() == 0x8100);
+    CHECK(b.drive().errorCode() == 0x8100);
   }
   {
     // The lenient drive never times out.
@@ -184,7 +182,7 @@ TEST_CASE("vendor profile: SYNC timeout, EMCY 0x8100 and the behaviour of 0x1029
     REQUIRE(b.write(0x1006, 0, 4, 1000) == "581#6006100000000000");
     b.nmt(0x01);
     b.sync();
-    CHECK(b.advance_to(b.t + milliseconds(50)).empty());
+    CHECK(b.advanceTo(b.t + milliseconds(50)).empty());
     CHECK(b.drive().nmt() == MRQP_FW_NMT_STATE_OPERATIONAL);
   }
 }

@@ -26,7 +26,7 @@ TEST_CASE("default PDO mapping entries fill the PDO lengths exactly", "[firmware
   CHECK(e[0] == 0x606C0020u);
   CHECK(e[1] == 0x603F0010u);
   CHECK(e[2] == 0x60610008u);
-  CHECK(mrqp_fw_arm_pdo_mapping(out_of_range_enum<mrqp_fw_arm_pdo>(7), e) == 0);
+  CHECK(mrqp_fw_arm_pdo_mapping(outOfRangeEnum<mrqp_fw_arm_pdo>(7), e) == 0);
 
   const struct {
     mrqp_fw_arm_pdo pdo;
@@ -113,7 +113,7 @@ TEST_CASE("arm PDOs round-trip at the integer limits and reject bad frames", "[f
   mrqp_fw_arm_rpdo1 r{};
   CHECK(mrqp_fw_arm_unpack_rpdo1(&f, 4, &r) == MRQP_FW_ERR_ID);
   CHECK(mrqp_fw_arm_pack_tpdo1(0, &t, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   CHECK(mrqp_fw_arm_pack_tpdo1(1, nullptr, &f) == MRQP_FW_PACK_ERR_ARG);
 }
 
@@ -218,11 +218,11 @@ TEST_CASE("RPDO1 from SI: saturation flagged, NaN rejected", "[firmware_if][arm]
         (MRQP_FW_ARM_SAT_POSITION | MRQP_FW_ARM_SAT_TORQUE));
 
   CHECK(mrqp_fw_arm_pack_rpdo1_si(&s, 6, 0x000F, nand(), 0.0, &f) == MRQP_FW_PACK_ERR_NAN);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   CHECK(mrqp_fw_arm_pack_rpdo1_si(&s, 6, 0x000F, 0.0, nand(), &f) == MRQP_FW_PACK_ERR_NAN);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   const mrqp_fw_arm_scale bad{0, 0};
   CHECK(mrqp_fw_arm_pack_rpdo1_si(&bad, 6, 0x000F, 0.0, 0.0, &f) == MRQP_FW_PACK_ERR_CONFIG);
   CHECK(mrqp_fw_arm_pack_rpdo1_si(&s, 0, 0x000F, 0.0, 0.0, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
 }

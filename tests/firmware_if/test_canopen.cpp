@@ -79,21 +79,21 @@ TEST_CASE("NMT frames, byte-exact and validated", "[firmware_if][nmt]") {
     }
   }
   CHECK(mrqp_fw_nmt_pack(MRQP_FW_NMT_START, 128, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   CHECK(mrqp_fw_nmt_pack(static_cast<mrqp_fw_nmt_cmd>(0x03), 1, &f) == MRQP_FW_PACK_ERR_ARG);
   CHECK(mrqp_fw_nmt_pack(MRQP_FW_NMT_START, 1, nullptr) == MRQP_FW_PACK_ERR_ARG);
 
   mrqp_fw_nmt_cmd c{};
   std::uint8_t n = 0;
-  mrqp_fw_frame bad = make_frame(0x000, {0x03, 0x01});
+  mrqp_fw_frame bad = makeFrame(0x000, {0x03, 0x01});
   CHECK(mrqp_fw_nmt_unpack(&bad, &c, &n) == MRQP_FW_ERR_COMMAND);
-  bad = make_frame(0x000, {0x01, 0x80});
+  bad = makeFrame(0x000, {0x01, 0x80});
   CHECK(mrqp_fw_nmt_unpack(&bad, &c, &n) == MRQP_FW_ERR_RANGE);
-  bad = make_frame(0x000, {0x01});
+  bad = makeFrame(0x000, {0x01});
   CHECK(mrqp_fw_nmt_unpack(&bad, &c, &n) == MRQP_FW_ERR_LENGTH);
-  bad = make_frame(0x001, {0x01, 0x01});
+  bad = makeFrame(0x001, {0x01, 0x01});
   CHECK(mrqp_fw_nmt_unpack(&bad, &c, &n) == MRQP_FW_ERR_ID);
-  bad = make_frame(0x000, {0x01, 0x01}, MRQP_FW_FRAME_FD);
+  bad = makeFrame(0x000, {0x01, 0x01}, MRQP_FW_FRAME_FD);
   CHECK(mrqp_fw_nmt_unpack(&bad, &c, &n) == MRQP_FW_ERR_FORMAT);
 
   CHECK(mrqp_fw_nmt_addresses(0, 9));
@@ -146,18 +146,18 @@ TEST_CASE("heartbeat and boot-up frames", "[firmware_if][nmt]") {
     CHECK(st == s);
   }
   CHECK(mrqp_fw_heartbeat_pack(0, MRQP_FW_NMT_STATE_OPERATIONAL, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
-  CHECK(mrqp_fw_heartbeat_pack(1, out_of_range_enum<mrqp_fw_nmt_state>(0x85), &f) == MRQP_FW_PACK_ERR_ARG);
+  CHECK(isCleared(f));
+  CHECK(mrqp_fw_heartbeat_pack(1, outOfRangeEnum<mrqp_fw_nmt_state>(0x85), &f) == MRQP_FW_PACK_ERR_ARG);
 
   std::uint8_t node = 0;
   mrqp_fw_nmt_state st{};
-  mrqp_fw_frame bad = make_frame(0x705, {0x85});  // node-guarding toggle bit: not a heartbeat
+  mrqp_fw_frame bad = makeFrame(0x705, {0x85});  // node-guarding toggle bit: not a heartbeat
   CHECK(mrqp_fw_heartbeat_unpack(&bad, &node, &st) == MRQP_FW_ERR_COMMAND);
-  bad = make_frame(0x700, {0x05});
+  bad = makeFrame(0x700, {0x05});
   CHECK(mrqp_fw_heartbeat_unpack(&bad, &node, &st) == MRQP_FW_ERR_ID);
-  bad = make_frame(0x605, {0x05});
+  bad = makeFrame(0x605, {0x05});
   CHECK(mrqp_fw_heartbeat_unpack(&bad, &node, &st) == MRQP_FW_ERR_ID);
-  bad = make_frame(0x705, {0x05, 0x00});
+  bad = makeFrame(0x705, {0x05, 0x00});
   CHECK(mrqp_fw_heartbeat_unpack(&bad, &node, &st) == MRQP_FW_ERR_LENGTH);
 }
 
@@ -176,13 +176,13 @@ TEST_CASE("SYNC with and without counter", "[firmware_if][sync]") {
     CHECK(c == k);
   }
   CHECK(mrqp_fw_sync_pack(241, &f) == MRQP_FW_PACK_ERR_ARG);
-  mrqp_fw_frame bad = make_frame(0x080, {0});
+  mrqp_fw_frame bad = makeFrame(0x080, {0});
   CHECK(mrqp_fw_sync_unpack(&bad, &c) == MRQP_FW_ERR_RANGE);
-  bad = make_frame(0x080, {241});
+  bad = makeFrame(0x080, {241});
   CHECK(mrqp_fw_sync_unpack(&bad, &c) == MRQP_FW_ERR_RANGE);
-  bad = make_frame(0x080, {1, 2});
+  bad = makeFrame(0x080, {1, 2});
   CHECK(mrqp_fw_sync_unpack(&bad, &c) == MRQP_FW_ERR_LENGTH);
-  bad = make_frame(0x081, {});
+  bad = makeFrame(0x081, {});
   CHECK(mrqp_fw_sync_unpack(&bad, &c) == MRQP_FW_ERR_ID);
 
   CHECK(mrqp_fw_sync_counter_next(1, 3) == 2);
@@ -220,12 +220,12 @@ TEST_CASE("EMCY frames, byte-exact and validated", "[firmware_if][emcy]") {
   CHECK(d.error_code == 0xFFFF);
 
   CHECK(mrqp_fw_emcy_pack(0, &e, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
-  mrqp_fw_frame bad = make_frame(0x080, {0, 0, 0, 0, 0, 0, 0, 0});  // that is SYNC
+  CHECK(isCleared(f));
+  mrqp_fw_frame bad = makeFrame(0x080, {0, 0, 0, 0, 0, 0, 0, 0});  // that is SYNC
   CHECK(mrqp_fw_emcy_unpack(&bad, &node, &d) == MRQP_FW_ERR_ID);
-  bad = make_frame(0x081, {0, 0, 0, 0, 0, 0, 0});
+  bad = makeFrame(0x081, {0, 0, 0, 0, 0, 0, 0});
   CHECK(mrqp_fw_emcy_unpack(&bad, &node, &d) == MRQP_FW_ERR_LENGTH);
-  bad = make_frame(0x081, {0x00, 0x10, 0x41, 0, 0, 0, 0, 0});  // reserved error-register bit 6
+  bad = makeFrame(0x081, {0x00, 0x10, 0x41, 0, 0, 0, 0, 0});  // reserved error-register bit 6
   CHECK(mrqp_fw_emcy_unpack(&bad, &node, &d) == MRQP_FW_ERR_FORMAT);
 
   CHECK(std::string(mrqp_fw_emcy_code_str(0x8611)) == "following error");

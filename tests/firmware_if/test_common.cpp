@@ -15,7 +15,7 @@ TEST_CASE("CRC-16/CCITT-FALSE matches the published check value", "[firmware_if]
   const auto* p = reinterpret_cast<const std::uint8_t*>(check);
   CHECK(mrqp_fw_crc16(p, 9) == 0x29B1);
   CHECK(MRQP_FW_CRC16_CHECK == 0x29B1u);
-  CHECK(crc16_reference(p, 9) == 0x29B1);
+  CHECK(crc16Reference(p, 9) == 0x29B1);
   CHECK(mrqp_fw_crc16(nullptr, 0) == 0xFFFF);  // init value, no xorout
 }
 
@@ -29,7 +29,7 @@ TEST_CASE("CRC-16 table code equals the bitwise definition; residue and incremen
       buf[i] = static_cast<std::uint8_t>(byte(rng));
     }
     const std::uint16_t crc = mrqp_fw_crc16(buf.data(), n);
-    REQUIRE(crc == crc16_reference(buf.data(), n));
+    REQUIRE(crc == crc16Reference(buf.data(), n));
     // Split in two calls.
     const std::size_t k = n / 3;
     CHECK(mrqp_fw_crc16_update(mrqp_fw_crc16(buf.data(), k), buf.data() + k, n - k) == crc);
@@ -230,7 +230,7 @@ TEST_CASE("CAN FD lengths and DLC codes", "[firmware_if][frame]") {
 }
 
 TEST_CASE("frame envelope checks", "[firmware_if][frame]") {
-  mrqp_fw_frame f = make_frame(0x123, {1, 2, 3});
+  mrqp_fw_frame f = makeFrame(0x123, {1, 2, 3});
   CHECK(mrqp_fw_frame_expect(&f, 0x123, 3, 0) == MRQP_FW_OK);
   CHECK(mrqp_fw_frame_expect(&f, 0x124, 3, 0) == MRQP_FW_ERR_ID);
   CHECK(mrqp_fw_frame_expect(&f, 0x123, 4, 0) == MRQP_FW_ERR_LENGTH);
@@ -241,7 +241,7 @@ TEST_CASE("frame envelope checks", "[firmware_if][frame]") {
   f.flags = MRQP_FW_FRAME_RTR;
   CHECK(mrqp_fw_frame_expect(&f, 0x123, 3, 0) == MRQP_FW_ERR_FORMAT);
   mrqp_fw_frame_clear(&f);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   mrqp_fw_frame_clear(nullptr);  // tolerated
 }
 
@@ -251,7 +251,7 @@ TEST_CASE("every error code has a name", "[firmware_if][status]") {
     CHECK_FALSE(s.empty());
     CHECK(s != "unknown error code");
   }
-  CHECK(std::string(mrqp_fw_err_str(out_of_range_enum<mrqp_fw_err>(99))) == "unknown error code");
+  CHECK(std::string(mrqp_fw_err_str(outOfRangeEnum<mrqp_fw_err>(99))) == "unknown error code");
   CHECK(mrqp_fw_pack_failed(MRQP_FW_PACK_ERR_NAN));
   CHECK_FALSE(mrqp_fw_pack_failed(0x0000FFFFu));
 }

@@ -108,10 +108,10 @@ TEST_CASE("force/torque classic: limits, saturation, NaN", "[firmware_if][ft]") 
     s = {{0, 0, 0, 0, 0, 0}, 0, 0};
     s.wrench[a] = nand();
     CHECK(mrqp_fw_ft_pack_classic(&kClassic, 1, &s, &f, &m) == MRQP_FW_PACK_ERR_NAN);
-    CHECK(is_cleared(f));
-    CHECK(is_cleared(m));
+    CHECK(isCleared(f));
+    CHECK(isCleared(m));
     CHECK(mrqp_fw_ft_pack_fd(&kFd, 1, &s, &f) == MRQP_FW_PACK_ERR_NAN);
-    CHECK(is_cleared(f));
+    CHECK(isCleared(f));
   }
   s = {{0, 0, 0, 0, 0, 0}, 0, 0x20};  // reserved status bit
   CHECK(mrqp_fw_ft_pack_classic(&kClassic, 1, &s, &f, &m) == MRQP_FW_PACK_ERR_ARG);
@@ -137,7 +137,7 @@ TEST_CASE("force/torque FD frame, byte-exact and validated", "[firmware_if][ft]"
   const Bytes body{0x40, 0x42, 0x0F, 0x00, 0x60, 0xDA, 0xD9, 0xFF, 0x00, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00,
                    0x00, 0xC0, 0xBD, 0xF0, 0xFF, 0xFF, 0xFF, 0xFF, 0x7F, 0xAB, 0x04, 0x00, 0x00, 0x00, 0x00};
   CHECK(Bytes(f.data, f.data + 30) == body);
-  const std::uint16_t crc = crc16_reference(body.data(), body.size());
+  const std::uint16_t crc = crc16Reference(body.data(), body.size());
   CHECK(f.data[30] == (crc >> 8));
   CHECK(f.data[31] == (crc & 0xFF));
 
@@ -161,11 +161,11 @@ TEST_CASE("force/torque FD frame, byte-exact and validated", "[firmware_if][ft]"
   CHECK(mrqp_fw_ft_unpack_fd(&kFd, &g, 3, &d) == MRQP_FW_ERR_LENGTH);
   g = f;
   g.data[27] = 1;  // padding
-  refresh_crc(g);
+  refreshCrc(g);
   CHECK(mrqp_fw_ft_unpack_fd(&kFd, &g, 3, &d) == MRQP_FW_ERR_FORMAT);
   g = f;
   g.data[25] = 0x40;  // reserved status
-  refresh_crc(g);
+  refreshCrc(g);
   CHECK(mrqp_fw_ft_unpack_fd(&kFd, &g, 3, &d) == MRQP_FW_ERR_FORMAT);
 
   // i32 saturation.
@@ -191,13 +191,13 @@ TEST_CASE("force/torque tare command", "[firmware_if][ft]") {
   CHECK(cmd == MRQP_FW_FT_CMD_CLEAR_TARE);
 
   CHECK(mrqp_fw_ft_pack_tare(0x10, 2, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
-  mrqp_fw_frame bad = make_frame(0x210, {0x01, 0xFF});
+  CHECK(isCleared(f));
+  mrqp_fw_frame bad = makeFrame(0x210, {0x01, 0xFF});
   CHECK(mrqp_fw_ft_unpack_tare(&bad, 0x10, &cmd) == MRQP_FW_ERR_FORMAT);
-  bad = make_frame(0x210, {0x02, 0xFD});
+  bad = makeFrame(0x210, {0x02, 0xFD});
   CHECK(mrqp_fw_ft_unpack_tare(&bad, 0x10, &cmd) == MRQP_FW_ERR_COMMAND);
-  bad = make_frame(0x211, {0x01, 0xFE});
+  bad = makeFrame(0x211, {0x01, 0xFE});
   CHECK(mrqp_fw_ft_unpack_tare(&bad, 0x10, &cmd) == MRQP_FW_ERR_ID);
-  bad = make_frame(0x210, {0x01, 0xFE, 0x00});
+  bad = makeFrame(0x210, {0x01, 0xFE, 0x00});
   CHECK(mrqp_fw_ft_unpack_tare(&bad, 0x10, &cmd) == MRQP_FW_ERR_LENGTH);
 }

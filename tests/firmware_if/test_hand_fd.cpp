@@ -12,11 +12,11 @@ namespace {
 
 const mrqp_fw_hand_scale kScale = MRQP_FW_HAND_SCALE_DEFAULT_INIT;
 
-double half_step(float lsb) {
+double halfStep(float lsb) {
   return 0.5 * static_cast<double>(lsb) * (1 + 1e-6) + 1e-6;  // + float rounding of the result
 }
 
-mrqp_fw_hand_cmd random_cmd(std::mt19937& rng, unsigned count) {
+mrqp_fw_hand_cmd randomCmd(std::mt19937& rng, unsigned count) {
   std::uniform_real_distribution<float> up(-3.2f, 3.2f), uv(-40.0f, 40.0f), ut(-2.0f, 2.0f);
   mrqp_fw_hand_cmd c{};
   c.seq = static_cast<std::uint16_t>(rng());
@@ -72,7 +72,7 @@ TEST_CASE("hand FD command, byte-exact", "[firmware_if][hand]") {
   REQUIRE(f.len == 12);
   const Bytes head{0x12, 0x34, 0x11, 0x03, 0x01, 0x27, 0x10, 0xFF, 0xF1, 0xF4};
   CHECK(Bytes(f.data, f.data + 10) == head);
-  const std::uint16_t crc = crc16_reference(head.data(), head.size());
+  const std::uint16_t crc = crc16Reference(head.data(), head.size());
   CHECK(f.data[10] == (crc >> 8));
   CHECK(f.data[11] == (crc & 0xFF));
 
@@ -113,7 +113,7 @@ TEST_CASE("hand FD feedback, byte-exact", "[firmware_if][hand]") {
   const Bytes body{0xBE, 0xEF, 0x42, 0x12, 0x21, 0x00, 0x02, 0xD8, 0xF0,
                    0x00, 0x2F, 0xFF, 0x00, 0x00, 0x00, 0x07, 0xFF, 0x00};  // 17 used + 1 padding
   CHECK(Bytes(f.data, f.data + 18) == body);
-  const std::uint16_t crc = crc16_reference(body.data(), body.size());
+  const std::uint16_t crc = crc16Reference(body.data(), body.size());
   CHECK(f.data[18] == (crc >> 8));
   CHECK(f.data[19] == (crc & 0xFF));
 
@@ -132,7 +132,7 @@ TEST_CASE("hand FD round trips for every joint count stay within half a step", "
   mrqp_fw_frame f{};
   for (int iter = 0; iter < 300; ++iter) {
     for (unsigned n = 0; n <= MRQP_FW_HAND_FD_MAX_JOINTS; ++n) {
-      const mrqp_fw_hand_cmd c = random_cmd(rng, n);
+      const mrqp_fw_hand_cmd c = randomCmd(rng, n);
       REQUIRE(mrqp_fw_hand_pack_cmd(&kScale, 1, &c, &f, nullptr) == MRQP_FW_PACK_OK);
       REQUIRE(f.len == mrqp_fw_hand_cmd_len(n));
       mrqp_fw_hand_cmd d{};
@@ -140,9 +140,9 @@ TEST_CASE("hand FD round trips for every joint count stay within half a step", "
       REQUIRE(d.seq == c.seq);
       REQUIRE(d.first_joint == c.first_joint);
       for (unsigned j = 0; j < n; ++j) {
-        REQUIRE(std::fabs(d.joint[j].position - c.joint[j].position) <= half_step(kScale.position_lsb));
-        REQUIRE(std::fabs(d.joint[j].velocity - c.joint[j].velocity) <= half_step(kScale.velocity_lsb));
-        REQUIRE(std::fabs(d.joint[j].torque - c.joint[j].torque) <= half_step(kScale.torque_lsb));
+        REQUIRE(std::fabs(d.joint[j].position - c.joint[j].position) <= halfStep(kScale.position_lsb));
+        REQUIRE(std::fabs(d.joint[j].velocity - c.joint[j].velocity) <= halfStep(kScale.velocity_lsb));
+        REQUIRE(std::fabs(d.joint[j].torque - c.joint[j].torque) <= halfStep(kScale.torque_lsb));
       }
 
       mrqp_fw_hand_fb b{};
@@ -159,7 +159,7 @@ TEST_CASE("hand FD round trips for every joint count stay within half a step", "
       mrqp_fw_hand_fb bd{};
       REQUIRE(mrqp_fw_hand_unpack_fb(&kScale, &f, 1, &bd) == MRQP_FW_OK);
       for (unsigned j = 0; j < n; ++j) {
-        REQUIRE(std::fabs(bd.joint[j].torque - b.joint[j].torque) <= half_step(kScale.torque_lsb));
+        REQUIRE(std::fabs(bd.joint[j].torque - b.joint[j].torque) <= halfStep(kScale.torque_lsb));
       }
     }
   }
@@ -195,7 +195,7 @@ TEST_CASE("hand FD limits: saturation per field and per joint, NaN rejected", "[
     *fields[field] = nanf();
     sat = 123;
     CHECK(mrqp_fw_hand_pack_cmd(&kScale, 0, &n, &f, &sat) == MRQP_FW_PACK_ERR_NAN);
-    CHECK(is_cleared(f));
+    CHECK(isCleared(f));
     CHECK(sat == 0);
   }
   // A NaN beyond `count` is not part of the frame.
@@ -209,7 +209,7 @@ TEST_CASE("hand FD pack refuses bad arguments and configuration", "[firmware_if]
   c.count = 1;
   mrqp_fw_frame f{};
   CHECK(mrqp_fw_hand_pack_cmd(&kScale, 16, &c, &f, nullptr) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   c.count = 12;
   CHECK(mrqp_fw_hand_pack_cmd(&kScale, 0, &c, &f, nullptr) == MRQP_FW_PACK_ERR_ARG);
   c.count = 3;
@@ -232,12 +232,12 @@ TEST_CASE("hand FD pack refuses bad arguments and configuration", "[firmware_if]
   mrqp_fw_hand_fb b{};
   b.status = 0x40;  // reserved bit
   CHECK(mrqp_fw_hand_pack_fb(&kScale, 0, &b, &f, nullptr) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
 }
 
 TEST_CASE("hand FD unpack rejects corrupted and malformed frames", "[firmware_if][hand]") {
   std::mt19937 rng(5);
-  const mrqp_fw_hand_cmd c = random_cmd(rng, 9);
+  const mrqp_fw_hand_cmd c = randomCmd(rng, 9);
   mrqp_fw_frame good{};
   REQUIRE(mrqp_fw_hand_pack_cmd(&kScale, 4, &c, &good, nullptr) == MRQP_FW_PACK_OK);
   REQUIRE(good.len == 64);
@@ -269,37 +269,37 @@ TEST_CASE("hand FD unpack rejects corrupted and malformed frames", "[firmware_if
   // Edits with a correct CRC: the content checks must catch them.
   f = good;
   f.data[2] = static_cast<std::uint8_t>(0x20 | MRQP_FW_HAND_MODE_POSITION);  // version 2
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_VERSION);
   f = good;
   f.data[2] = 0x15;  // mode 5
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_RANGE);
   f = good;
   f.data[4] = 12;  // count beyond 11
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_LENGTH);
   f = good;
   f.data[4] = 5;  // 5 joints need 32 bytes, not 64
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_LENGTH);
   f = good;
   f.data[3] = 30;  // first 30 + 9 joints > 32
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_RANGE);
   f = good;
   f.data[5 + 45] = 0x01;  // padding byte
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_FORMAT);
   f = good;
   f.data[5] = 0x80;  // position code 0x8000 of joint 0 is reserved
   f.data[6] = 0x00;
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_RANGE);
   f = good;
   f.data[5 + 5 * 8 + 2] = 0x80;  // velocity code 0x800 of joint 8
   f.data[5 + 5 * 8 + 3] = static_cast<std::uint8_t>(f.data[5 + 5 * 8 + 3] & 0x0F);
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_hand_unpack_cmd(&kScale, &f, 4, &d) == MRQP_FW_ERR_RANGE);
   mrqp_fw_hand_scale bad = kScale;
   bad.position_lsb = -1.0f;
@@ -313,6 +313,6 @@ TEST_CASE("hand FD unpack rejects corrupted and malformed frames", "[firmware_if
   mrqp_fw_frame g{};
   REQUIRE(mrqp_fw_hand_pack_fb(&kScale, 4, &b, &g, nullptr) == MRQP_FW_PACK_OK);
   g.data[4] = 0x80;
-  refresh_crc(g);
+  refreshCrc(g);
   CHECK(mrqp_fw_hand_unpack_fb(&kScale, &g, 4, &fb) == MRQP_FW_ERR_FORMAT);
 }

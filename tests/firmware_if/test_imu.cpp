@@ -43,7 +43,7 @@ TEST_CASE("IMU frame, byte-exact", "[firmware_if][imu]") {
                0xE8, 0x03, 0x0C, 0xFE, 0x01, 0x00,              // angular rate
                0x00, 0x00, 0x00, 0x00, 0xAA, 0x07,              // specific force
                0x2A, 0x02};                                     // seq, status
-  const std::uint16_t crc = crc16_reference(expect.data(), expect.size());
+  const std::uint16_t crc = crc16Reference(expect.data(), expect.size());
   expect.push_back(static_cast<std::uint8_t>(crc >> 8));
   expect.push_back(static_cast<std::uint8_t>(crc & 0xFFu));
   CHECK(payload(f) == expect);
@@ -169,12 +169,12 @@ TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][i
   CHECK(mrqp_fw_imu_unpack(&kScale, &f, 5, &d) == MRQP_FW_ERR_LENGTH);
   f = good;
   f.data[21] = 0x20;  // reserved status bit, CRC made right
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_imu_unpack(&kScale, &f, 5, &d) == MRQP_FW_ERR_FORMAT);
   f = good;
   f.data[0] = 0x00;  // qw = -32768: reserved
   f.data[1] = 0x80;
-  refresh_crc(f);
+  refreshCrc(f);
   CHECK(mrqp_fw_imu_unpack(&kScale, &f, 5, &d) == MRQP_FW_ERR_RANGE);
 
   // The norm check: |q| = 1.0099 and 0.9901 are accepted, 1.0101 and 0.9899 are not.
@@ -192,7 +192,7 @@ TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][i
     for (int b = 4; b < 8; ++b) {
       p[b] = 0;
     }
-    refresh_crc(f);
+    refreshCrc(f);
     CHECK((mrqp_fw_imu_unpack(&kScale, &f, 5, &d) == MRQP_FW_OK) == ok);
   }
 
@@ -201,16 +201,16 @@ TEST_CASE("IMU frame: corrupt and foreign frames are rejected", "[firmware_if][i
   mrqp_fw_imu_sample n = s;
   n.orientation[1] = nand();
   CHECK(mrqp_fw_imu_pack(&kScale, 5, &n, &out) == MRQP_FW_PACK_ERR_NAN);
-  CHECK(is_cleared(out));
+  CHECK(isCleared(out));
   n = s;
   n.specific_force[2] = nand();
   CHECK(mrqp_fw_imu_pack(&kScale, 5, &n, &out) == MRQP_FW_PACK_ERR_NAN);
-  CHECK(is_cleared(out));
+  CHECK(isCleared(out));
   n = s;
   n.status = 0x80;
   CHECK(mrqp_fw_imu_pack(&kScale, 5, &n, &out) == MRQP_FW_PACK_ERR_ARG);
   CHECK(mrqp_fw_imu_pack(&kScale, 128, &s, &out) == MRQP_FW_PACK_ERR_ARG);
   CHECK(mrqp_fw_imu_pack(&bad_scale, 5, &s, &out) == MRQP_FW_PACK_ERR_CONFIG);
-  CHECK(is_cleared(out));
+  CHECK(isCleared(out));
   CHECK(mrqp_fw_imu_pack(&kScale, 5, &s, nullptr) == MRQP_FW_PACK_ERR_ARG);
 }

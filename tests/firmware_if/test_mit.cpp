@@ -40,13 +40,13 @@ TEST_CASE("MIT special commands, byte-exact", "[firmware_if][mit]") {
   mrqp_fw_mit_cmd cmd{};
   CHECK(mrqp_fw_mit_unpack_cmd(&kDefault, &f, nullptr, &cmd) == MRQP_FW_ERR_COMMAND);
   CHECK(mrqp_fw_mit_pack_special(0, MRQP_FW_MIT_KIND_ENABLE, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   CHECK(mrqp_fw_mit_pack_special(1, MRQP_FW_MIT_KIND_COMMAND, &f) == MRQP_FW_PACK_ERR_ARG);
-  f = make_frame(1, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
+  f = makeFrame(1, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
   CHECK(mrqp_fw_mit_classify(&f) == MRQP_FW_MIT_KIND_COMMAND);
-  f = make_frame(1, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
+  f = makeFrame(1, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF});
   CHECK(mrqp_fw_mit_classify(&f) == MRQP_FW_MIT_KIND_INVALID);
-  f = make_frame(0, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC});
+  f = makeFrame(0, {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFC});
   CHECK(mrqp_fw_mit_classify(&f) == MRQP_FW_MIT_KIND_INVALID);
   CHECK(mrqp_fw_mit_classify(nullptr) == MRQP_FW_MIT_KIND_INVALID);
 }
@@ -109,22 +109,22 @@ TEST_CASE("MIT reply, byte-exact", "[firmware_if][mit]") {
   CHECK(std::fabs(d.v) <= bound(-65.0f, 65.0f, 12));
 
   // Hand-decoded reply: id 7, p 0xFFFF, v 0x000, t 0xFFF.
-  f = make_frame(0x000, {0x07, 0xFF, 0xFF, 0x00, 0x0F, 0xFF});
+  f = makeFrame(0x000, {0x07, 0xFF, 0xFF, 0x00, 0x0F, 0xFF});
   REQUIRE(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_OK);
   CHECK(d.motor_id == 7);
   CHECK(d.p == Approx(12.5f));
   CHECK(d.v == Approx(-65.0f));
   CHECK(d.t == Approx(18.0f));
 
-  f = make_frame(0x000, {0x00, 0, 0, 0, 0, 0});
+  f = makeFrame(0x000, {0x00, 0, 0, 0, 0, 0});
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_RANGE);
-  f = make_frame(0x000, {0x80, 0, 0, 0, 0, 0});
+  f = makeFrame(0x000, {0x80, 0, 0, 0, 0, 0});
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_RANGE);
-  f = make_frame(0x001, {0x01, 0, 0, 0, 0, 0});
+  f = makeFrame(0x001, {0x01, 0, 0, 0, 0, 0});
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_ID);
-  f = make_frame(0x000, {0x01, 0, 0, 0, 0, 0, 0, 0});
+  f = makeFrame(0x000, {0x01, 0, 0, 0, 0, 0, 0, 0});
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_LENGTH);
-  f = make_frame(0x000, {0x01, 0, 0, 0, 0, 0}, MRQP_FW_FRAME_FD);
+  f = makeFrame(0x000, {0x01, 0, 0, 0, 0, 0}, MRQP_FW_FRAME_FD);
   CHECK(mrqp_fw_mit_unpack_reply(&kDefault, &f, &d) == MRQP_FW_ERR_FORMAT);
 }
 
@@ -155,8 +155,8 @@ TEST_CASE("MIT round trips stay within half a step; limits saturate and are flag
 
   // Decoding every code and re-encoding it gives the code back (the map is consistent).
   for (std::uint32_t code = 0; code < 4096; ++code) {
-    f = make_frame(2, {0x12, 0x34, static_cast<std::uint8_t>(code >> 4),
-                       static_cast<std::uint8_t>((code & 0xF) << 4), 0, 0, 0, 0});
+    f = makeFrame(2, {0x12, 0x34, static_cast<std::uint8_t>(code >> 4),
+                      static_cast<std::uint8_t>((code & 0xF) << 4), 0, 0, 0, 0});
     mrqp_fw_mit_cmd d{};
     REQUIRE(mrqp_fw_mit_unpack_cmd(&kDefault, &f, nullptr, &d) == MRQP_FW_OK);
     mrqp_fw_frame g{};
@@ -207,14 +207,14 @@ TEST_CASE("MIT: NaN is rejected, bad configuration and ids refused", "[firmware_
     *fields[field] = nanf();
     f.id = 1;
     CHECK(mrqp_fw_mit_pack_cmd(&kDefault, 1, &c, &f) == MRQP_FW_PACK_ERR_NAN);
-    CHECK(is_cleared(f));
+    CHECK(isCleared(f));
   }
   for (int field = 0; field < 3; ++field) {
     mrqp_fw_mit_reply r{1, 0, 0, 0};
     float* fields[] = {&r.p, &r.v, &r.t};
     *fields[field] = -nanf();
     CHECK(mrqp_fw_mit_pack_reply(&kDefault, &r, &f) == MRQP_FW_PACK_ERR_NAN);
-    CHECK(is_cleared(f));
+    CHECK(isCleared(f));
   }
   const mrqp_fw_mit_cmd c{0, 0, 0, 0, 0};
   mrqp_fw_mit_ranges bad = kDefault;

@@ -44,7 +44,7 @@ TEST_CASE("expedited SDO frames, byte-exact", "[firmware_if][sdo]") {
   CHECK(f.id == 0x603u);
 
   CHECK(mrqp_fw_sdo_pack_download_req(3, 0x2000, 0, three, 5, &f) == MRQP_FW_PACK_ERR_ARG);
-  CHECK(is_cleared(f));
+  CHECK(isCleared(f));
   CHECK(mrqp_fw_sdo_pack_download_req(3, 0x2000, 0, three, 0, &f) == MRQP_FW_PACK_ERR_ARG);
   CHECK(mrqp_fw_sdo_pack_download_req(0, 0x2000, 0, three, 1, &f) == MRQP_FW_PACK_ERR_ARG);
   CHECK(mrqp_fw_sdo_pack_download_u32(3, 0x2000, 0, 1, 3, &f) == MRQP_FW_PACK_ERR_ARG);
@@ -85,7 +85,7 @@ TEST_CASE("segmented SDO frames, byte-exact", "[firmware_if][sdo]") {
 
 TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware_if][sdo]") {
   mrqp_fw_sdo_msg m{};
-  mrqp_fw_frame f = make_frame(0x603, {0x2F, 0x60, 0x60, 0x00, 0x08, 0x00, 0x00, 0x00});
+  mrqp_fw_frame f = makeFrame(0x603, {0x2F, 0x60, 0x60, 0x00, 0x08, 0x00, 0x00, 0x00});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_DOWNLOAD_INIT_REQ);
   CHECK(m.node == 3);
@@ -97,7 +97,7 @@ TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware
   CHECK(m.n == 1);
   CHECK(m.data[0] == 8);
 
-  f = make_frame(0x583, {0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0x00, 0x00});
+  f = makeFrame(0x583, {0x4B, 0x41, 0x60, 0x00, 0x37, 0x02, 0x00, 0x00});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_UPLOAD_INIT_RESP);
   CHECK(m.from_server == 1);
@@ -106,19 +106,19 @@ TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware
   CHECK(m.data[1] == 0x02);
 
   // Expedited without size indication: 4 bytes.
-  f = make_frame(0x583, {0x42, 0x00, 0x10, 0x00, 1, 2, 3, 4});
+  f = makeFrame(0x583, {0x42, 0x00, 0x10, 0x00, 1, 2, 3, 4});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.expedited == 1);
   CHECK(m.size_indicated == 0);
   CHECK(m.n == 4);
 
-  f = make_frame(0x583, {0x41, 0x08, 0x10, 0x00, 0x14, 0x00, 0x00, 0x00});
+  f = makeFrame(0x583, {0x41, 0x08, 0x10, 0x00, 0x14, 0x00, 0x00, 0x00});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_UPLOAD_INIT_RESP);
   CHECK(m.expedited == 0);
   CHECK(m.size == 20);
 
-  f = make_frame(0x583, {0x19, 'a', 'b', 'c', 0, 0, 0, 0});
+  f = makeFrame(0x583, {0x19, 'a', 'b', 'c', 0, 0, 0, 0});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_UPLOAD_SEG_RESP);
   CHECK(m.toggle == 1);
@@ -126,44 +126,44 @@ TEST_CASE("SDO unpack decodes every frame kind and rejects bad ones", "[firmware
   CHECK(m.last == 1);
   CHECK(m.data[2] == 'c');
 
-  f = make_frame(0x603, {0x70, 0, 0, 0, 0, 0, 0, 0});
+  f = makeFrame(0x603, {0x70, 0, 0, 0, 0, 0, 0, 0});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_UPLOAD_SEG_REQ);
   CHECK(m.toggle == 1);
 
-  f = make_frame(0x583, {0x30, 0, 0, 0, 0, 0, 0, 0});
+  f = makeFrame(0x583, {0x30, 0, 0, 0, 0, 0, 0, 0});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_DOWNLOAD_SEG_RESP);
   CHECK(m.toggle == 1);
 
-  f = make_frame(0x583, {0x60, 0x17, 0x10, 0x00, 0, 0, 0, 0});
+  f = makeFrame(0x583, {0x60, 0x17, 0x10, 0x00, 0, 0, 0, 0});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_DOWNLOAD_INIT_RESP);
   CHECK(m.index == 0x1017);
 
-  f = make_frame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
+  f = makeFrame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_UPLOAD_INIT_REQ);
 
-  f = make_frame(0x583, {0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x02, 0x06});
+  f = makeFrame(0x583, {0x80, 0x00, 0x20, 0x00, 0x00, 0x00, 0x02, 0x06});
   REQUIRE(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_OK);
   CHECK(m.kind == MRQP_FW_SDO_ABORT);
   CHECK(m.abort_code == MRQP_FW_SDO_ABORT_NO_OBJECT);
 
   // Block transfer and cs 7 are not supported.
   for (unsigned cs : {5u, 6u, 7u}) {
-    f = make_frame(0x603, {static_cast<std::uint8_t>(cs << 5u), 0, 0, 0, 0, 0, 0, 0});
+    f = makeFrame(0x603, {static_cast<std::uint8_t>(cs << 5u), 0, 0, 0, 0, 0, 0, 0});
     CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_COMMAND);
     f.id = 0x583;
     CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_COMMAND);
   }
-  f = make_frame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0});
+  f = makeFrame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0});
   CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_LENGTH);
-  f = make_frame(0x703, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
+  f = makeFrame(0x703, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
   CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_ID);
-  f = make_frame(0x600, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
+  f = makeFrame(0x600, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0});
   CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_ID);
-  f = make_frame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0}, MRQP_FW_FRAME_FD);
+  f = makeFrame(0x603, {0x40, 0x41, 0x60, 0x00, 0, 0, 0, 0}, MRQP_FW_FRAME_FD);
   CHECK(mrqp_fw_sdo_unpack(&f, &m) == MRQP_FW_ERR_FORMAT);
 }
 
@@ -304,7 +304,7 @@ TEST_CASE("SDO client reads and writes any size through the emulated server", "[
     REQUIRE(step == MRQP_FW_SDO_STEP_SEND);
     step = run(c, s, step, out, &frames);
     REQUIRE(step == MRQP_FW_SDO_STEP_DONE);
-    CHECK(is_cleared(out));
+    CHECK(isCleared(out));
     REQUIRE(c.count == size);
     CHECK(Bytes(buf, buf + size) == s.value);
     // expedited: 1 request; segmented: initiate + ceil(size / 7) segments
@@ -364,7 +364,7 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     step = run(c, s, step, out);
     CHECK(step == MRQP_FW_SDO_STEP_ABORTED);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_NO_OBJECT);
-    CHECK(is_cleared(out));
+    CHECK(isCleared(out));
   }
   SECTION("timeout, foreign frames, misuse") {
     mrqp_fw_sdo_client c{};
@@ -375,12 +375,12 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     CHECK(mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, sizeof(buf), &other) ==
           MRQP_FW_SDO_STEP_ERROR);
     // A frame from another node or a PDO is ignored.
-    mrqp_fw_frame foreign = make_frame(0x585, {0x4F, 0x00, 0x20, 0x01, 1, 0, 0, 0});
+    mrqp_fw_frame foreign = makeFrame(0x585, {0x4F, 0x00, 0x20, 0x01, 1, 0, 0, 0});
     CHECK(mrqp_fw_sdo_client_on_frame(&c, &foreign, &other) == MRQP_FW_SDO_STEP_IGNORED);
-    foreign = make_frame(0x189, {0, 0, 0, 0, 0, 0, 0, 0});
+    foreign = makeFrame(0x189, {0, 0, 0, 0, 0, 0, 0, 0});
     CHECK(mrqp_fw_sdo_client_on_frame(&c, &foreign, &other) == MRQP_FW_SDO_STEP_IGNORED);
     // A response for another object: abort.
-    mrqp_fw_frame wrong = make_frame(0x589, {0x4F, 0x01, 0x20, 0x01, 1, 0, 0, 0});
+    mrqp_fw_frame wrong = makeFrame(0x589, {0x4F, 0x01, 0x20, 0x01, 1, 0, 0, 0});
     CHECK(mrqp_fw_sdo_client_on_frame(&c, &wrong, &other) == MRQP_FW_SDO_STEP_ABORT_SEND);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_GENERAL);
     // Idle now: timeouts and frames are errors / ignored.
@@ -394,7 +394,7 @@ TEST_CASE("SDO client aborts on protocol errors and reports server aborts", "[fi
     CHECK(payload(out) == Bytes{0x80, 0x00, 0x20, 0x01, 0x00, 0x00, 0x04, 0x05});
     // Unknown command specifier from the server.
     step = mrqp_fw_sdo_client_start_upload(&c, s.node, 0x2000, 1, buf, sizeof(buf), &out);
-    mrqp_fw_frame block = make_frame(0x589, {0xC0, 0, 0, 0, 0, 0, 0, 0});
+    mrqp_fw_frame block = makeFrame(0x589, {0xC0, 0, 0, 0, 0, 0, 0, 0});
     CHECK(mrqp_fw_sdo_client_on_frame(&c, &block, &out) == MRQP_FW_SDO_STEP_ABORT_SEND);
     CHECK(c.abort_code == MRQP_FW_SDO_ABORT_COMMAND);
     // Invalid starts.

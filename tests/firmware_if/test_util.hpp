@@ -14,7 +14,7 @@ using Bytes = std::vector<std::uint8_t>;
 
 inline Bytes payload(const mrqp_fw_frame& f) { return Bytes(f.data, f.data + f.len); }
 
-inline mrqp_fw_frame make_frame(std::uint32_t id, const Bytes& data, std::uint8_t flags = 0) {
+inline mrqp_fw_frame makeFrame(std::uint32_t id, const Bytes& data, std::uint8_t flags = 0) {
   mrqp_fw_frame f{};
   f.id = id;
   f.len = static_cast<std::uint8_t>(data.size());
@@ -26,7 +26,7 @@ inline mrqp_fw_frame make_frame(std::uint32_t id, const Bytes& data, std::uint8_
 }
 
 // A cleared frame: what every failed pack must leave behind.
-inline bool is_cleared(const mrqp_fw_frame& f) {
+inline bool isCleared(const mrqp_fw_frame& f) {
   if (f.id != MRQP_FW_ID_INVALID || f.len != 0 || f.flags != 0) {
     return false;
   }
@@ -39,7 +39,7 @@ inline bool is_cleared(const mrqp_fw_frame& f) {
 }
 
 // Bit-by-bit CRC-16/CCITT-FALSE straight from the definition (independent of the table code).
-inline std::uint16_t crc16_reference(const std::uint8_t* data, std::size_t n) {
+inline std::uint16_t crc16Reference(const std::uint8_t* data, std::size_t n) {
   std::uint16_t crc = 0xFFFF;
   for (std::size_t i = 0; i < n; ++i) {
     for (int bit = 7; bit >= 0; --bit) {
@@ -55,8 +55,8 @@ inline std::uint16_t crc16_reference(const std::uint8_t* data, std::size_t n) {
 }
 
 // Recomputes the trailing MSB-first CRC-16 of a frame after a deliberate edit.
-inline void refresh_crc(mrqp_fw_frame& f) {
-  const std::uint16_t crc = crc16_reference(f.data, static_cast<std::size_t>(f.len) - 2u);
+inline void refreshCrc(mrqp_fw_frame& f) {
+  const std::uint16_t crc = crc16Reference(f.data, static_cast<std::size_t>(f.len) - 2u);
   f.data[f.len - 2] = static_cast<std::uint8_t>(crc >> 8);
   f.data[f.len - 1] = static_cast<std::uint8_t>(crc & 0xFFu);
 }
@@ -64,7 +64,7 @@ inline void refresh_crc(mrqp_fw_frame& f) {
 // An enumeration value outside the enumerators (what a corrupt caller or frame could hand over),
 // made at run time so that the conversion is not a constant the compiler rejects.
 template <class Enum>
-inline Enum out_of_range_enum(int value) {
+inline Enum outOfRangeEnum(int value) {
   volatile int v = value;
   return static_cast<Enum>(static_cast<int>(v));
 }

@@ -71,9 +71,9 @@ TEST_CASE("loop: a valid hardware section resolves joints, nodes and buses", "[l
   drivers::BusSpec spec;
   spec.cycle_hz = 250.0;
   drivers::BusBudget b(spec);
-  b.add_sync();
-  b.add_arm_drives(5, true);
-  b.add_heartbeats(5, 0.1);
+  b.addSync();
+  b.addArmDrives(5, true);
+  b.addHeartbeats(5, 0.1);
   CHECK(r.buses[0].utilisation_worst == Approx(b.result().utilisation_worst));
 }
 
@@ -118,9 +118,9 @@ TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loo
   spec.name = "a";
   spec.cycle_hz = 1000.0;
   drivers::BusBudget b(spec);
-  b.add_sync();
-  b.add_arm_drives(8, true);
-  b.add_heartbeats(8, 0.1);
+  b.addSync();
+  b.addArmDrives(8, true);
+  b.addHeartbeats(8, 0.1);
   std::string message;
   REQUIRE_FALSE(b.check(&message));
   CHECK(errorOf(hw) == "s.yaml:14: hardware.buses[0]: " + message);

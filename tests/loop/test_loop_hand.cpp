@@ -103,7 +103,7 @@ TEST_CASE("loop: hand: the finger as an MIT motor follows its task, commanded ev
   CHECK(std::string(io.device->kind()) == "mit_hand");
   emulation::EmulatedMitMotor* motor = s.rig->mitMotor("panda.panda_finger_joint1");
   REQUIRE(motor != nullptr);
-  CHECK(motor->motor_id() == 3);
+  CHECK(motor->motorId() == 3);
   REQUIRE(s.boot());
   CHECK(motor->enabled());
   const unsigned frames0 = motor->frames();
@@ -146,7 +146,7 @@ TEST_CASE("loop: hand: a silent MIT motor stops the controller as a driver fault
   REQUIRE(s.boot());
   for (int k = 0; k < 200; ++k) s.cycle();
   REQUIRE_FALSE(s.ctrl->safeStopped());
-  s.rig->mitMotor("panda.panda_finger_joint1")->set_silent(true);
+  s.rig->mitMotor("panda.panda_finger_joint1")->setSilent(true);
   const std::uint64_t silent_at = s.ctrl->cycles();
   for (int k = 0; k < 100 && !s.ctrl->safeStopped(); ++k) s.cycle();
   REQUIRE(s.ctrl->safeStopped());
@@ -163,7 +163,7 @@ TEST_CASE("loop: hand: a faulted hand board stops the controller as a driver fau
   REQUIRE(s.boot());
   for (int k = 0; k < 200; ++k) s.cycle();
   REQUIRE_FALSE(s.ctrl->safeStopped());
-  s.rig->handBoard("panda.panda_finger_joint1")->raise_fault(s.now);
+  s.rig->handBoard("panda.panda_finger_joint1")->raiseFault(s.now);
   const std::uint64_t fault_at = s.ctrl->cycles();
   for (int k = 0; k < 100 && !s.ctrl->safeStopped(); ++k) s.cycle();
   REQUIRE(s.ctrl->safeStopped());

@@ -16,7 +16,7 @@ struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
       : emu(owner), cfg(node), drive(*this, options(node, boot_delay, profile)) {
     q = cfg.joint.initial_position;
     target_position = q;
-    drive.stop_heartbeat_at(cfg.faults.heartbeat_stop_at);
+    drive.stopHeartbeatAt(cfg.faults.heartbeat_stop_at);
   }
 
   static EmulatedCia402Drive::Options options(const EmuNode& node, TimeNs boot_delay,
@@ -31,20 +31,20 @@ struct DriveEmulator::Drive final : private EmulatedCia402Drive::Host {
 
   void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept override { emu.send(frame, at); }
 
-  void on_nmt_reset(bool application) noexcept override {
+  void onNmtReset(bool application) noexcept override {
     if (application) {
       target_position = q;
     }
   }
 
-  EmulatedCia402Drive::Feedback on_sync(const EmulatedCia402Drive& d, bool new_targets,
-                                        TimeNs) noexcept override {
+  EmulatedCia402Drive::Feedback onSync(const EmulatedCia402Drive& d, bool new_targets,
+                                       TimeNs) noexcept override {
     if (new_targets) {
       double v = 0.0;
-      if (mrqp_fw_arm_position_from_inc(&cfg.scale, d.target_position(), &v) == MRQP_FW_CONV_OK) {
+      if (mrqp_fw_arm_position_from_inc(&cfg.scale, d.targetPosition(), &v) == MRQP_FW_CONV_OK) {
         target_position = v;
       }
-      if (mrqp_fw_arm_torque_from_permille(&cfg.scale, d.target_torque(), &v) == MRQP_FW_CONV_OK) {
+      if (mrqp_fw_arm_torque_from_permille(&cfg.scale, d.targetTorque(), &v) == MRQP_FW_CONV_OK) {
         target_torque = v;
       }
     }
@@ -107,12 +107,12 @@ std::size_t DriveEmulator::size() const noexcept { return drives_.size(); }
 double DriveEmulator::position(std::size_t i) const noexcept { return drives_[i]->q; }
 mrqp_fw_cia402_state DriveEmulator::state(std::size_t i) const noexcept { return drives_[i]->drive.state(); }
 mrqp_fw_nmt_state DriveEmulator::nmt(std::size_t i) const noexcept { return drives_[i]->drive.nmt(); }
-unsigned DriveEmulator::comm_errors(std::size_t i) const noexcept { return drives_[i]->drive.comm_errors(); }
+unsigned DriveEmulator::commErrors(std::size_t i) const noexcept { return drives_[i]->drive.commErrors(); }
 
-TimeNs DriveEmulator::next_event() const noexcept {
+TimeNs DriveEmulator::nextEvent() const noexcept {
   TimeNs t = next_step_;
   for (const auto& d : drives_) {
-    t = std::min(t, d->drive.next_event());
+    t = std::min(t, d->drive.nextEvent());
     if (!d->emcy_done) {
       t = std::min(t, d->cfg.faults.emcy_at);
     }
@@ -141,15 +141,15 @@ void DriveEmulator::step(Drive& d, double dt) noexcept {
 }
 
 void DriveEmulator::advance(TimeNs now) noexcept {
-  while (next_event() <= now) {
-    const TimeNs t = next_event();
+  while (nextEvent() <= now) {
+    const TimeNs t = nextEvent();
     for (auto& p : drives_) {
       Drive& d = *p;
       d.now = t;
       d.drive.advance(t);  // boot-up message, heartbeat
       if (!d.emcy_done && d.cfg.faults.emcy_at <= t) {
         d.emcy_done = true;
-        d.drive.raise_fault(d.cfg.faults.emcy_code, 0x03, t);
+        d.drive.raiseFault(d.cfg.faults.emcy_code, 0x03, t);
       }
     }
     if (next_step_ <= t) {
@@ -162,10 +162,10 @@ void DriveEmulator::advance(TimeNs now) noexcept {
   }
 }
 
-void DriveEmulator::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+void DriveEmulator::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   for (auto& d : drives_) {
     d->now = now;
-    if (d->drive.on_frame(f, now) == EmulatedCia402Drive::Received::Rpdo) {
+    if (d->drive.onFrame(f, now) == EmulatedCia402Drive::Received::Rpdo) {
       ++stats_.rpdos;
     }
   }

@@ -1,7 +1,7 @@
 // mrqp-drive-emu -- the drive side of the CiA 402 arm protocol for a set of node ids, with a
 // simple physical model per joint and fault injection (docs: tools/drive_emu/README.md).
 //
-// DriveEmulator is transport-free: frames in via on_frame(), time moves via advance(), frames out
+// DriveEmulator is transport-free: frames in via onFrame(), time moves via advance(), frames out
 // through a FrameSink. Each node is the drive side of mrqp drivers (EmulatedCia402Drive: NMT,
 // SDO server, CiA 402 state machine, PDOs) with a joint model behind it. emu_sim.hpp attaches the
 // emulator to a SimNode (tests), main.cpp to SocketCAN.
@@ -58,7 +58,7 @@ struct EmuConfig {
   mrqp::emulation::VendorProfile profile = mrqp::emulation::VendorProfile::lenient();
 };
 
-/// Limits of the configuration (checked by load_config and validate_config).
+/// Limits of the configuration (checked by loadConfig and validateConfig).
 namespace limits {
 inline constexpr double kStepMsMin = 0.01;  ///< physics step
 inline constexpr double kStepMsMax = 100.0;
@@ -73,16 +73,15 @@ inline constexpr double kPositionMax = 1000.0;          ///< |initial_position| 
 
 /// Loads a YAML configuration; on error returns false and "FILE:LINE: FIELD: message" (nothing
 /// thrown, whatever the file holds).
-bool load_config(const std::string& path, EmuConfig* config, std::string* error);
+bool loadConfig(const std::string& path, EmuConfig* config, std::string* error);
 /// Parses "N@T" / "N@T:code" (T in seconds, 0..limits::kTimeSMax) fault switches of the command
 /// line into `config`.
-bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* config,
-                        std::string* error);
+bool applyFaultSwitch(const std::string& kind, const std::string& arg, EmuConfig* config, std::string* error);
 /// Validates the configuration (node ids unique 1..127, every value finite and within limits::),
 /// e.g. after command-line overrides.
-bool validate_config(const EmuConfig& config, const std::string& origin, std::string* error);
+bool validateConfig(const EmuConfig& config, const std::string& origin, std::string* error);
 /// What the configuration emulates, one line per node and the profile (for --check).
-std::string describe_config(const EmuConfig& config);
+std::string describeConfig(const EmuConfig& config);
 
 class FrameSink {
  public:
@@ -108,18 +107,18 @@ class DriveEmulator {
   DriveEmulator& operator=(const DriveEmulator&) = delete;
 
   /// A frame received at `now` (call advance(now) first).
-  void on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  void onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   /// Runs physics steps, heartbeats, boots and scheduled faults up to `now`.
   void advance(TimeNs now) noexcept;
   /// The next time advance() has something to do.
-  TimeNs next_event() const noexcept;
+  TimeNs nextEvent() const noexcept;
 
   struct Drive;
   std::size_t size() const noexcept;
   double position(std::size_t i) const noexcept;  ///< rad, physical model
   mrqp_fw_cia402_state state(std::size_t i) const noexcept;
   mrqp_fw_nmt_state nmt(std::size_t i) const noexcept;
-  unsigned comm_errors(std::size_t i) const noexcept;  ///< SYNC timeouts of drive i
+  unsigned commErrors(std::size_t i) const noexcept;  ///< SYNC timeouts of drive i
   const EmuStats& stats() const noexcept { return stats_; }
 
  private:

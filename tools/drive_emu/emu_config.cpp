@@ -24,10 +24,10 @@ using scene::Bound;
 using scene::Map;
 using scene::Reader;
 
-TimeNs seconds_to_ns(double s) { return static_cast<TimeNs>(std::llround(s * 1e9)); }
+TimeNs secondsToNs(double s) { return static_cast<TimeNs>(std::llround(s * 1e9)); }
 
 /// A limit as written in the docs (up to 10 significant digits, e.g. 4294967.295).
-std::string limit_str(double v) {
+std::string limitStr(double v) {
   std::ostringstream o;
   o.precision(10);
   o << v;
@@ -43,8 +43,8 @@ double ranged(const Map& m, const char* key, double lo, double hi, double fallba
   const double v = m.reader().number(*n, m.at(key), Bound::Any);
   if (v > hi || v < lo || (lo_open && v == lo)) {
     m.reader().fail(*n, m.at(key),
-                    std::string("expected a number in ") + (lo_open ? "(" : "[") + limit_str(lo) + ", " +
-                        limit_str(hi) + "], got " + scene::describe(*n));
+                    std::string("expected a number in ") + (lo_open ? "(" : "[") + limitStr(lo) + ", " +
+                        limitStr(hi) + "], got " + scene::describe(*n));
   }
   return v;
 }
@@ -65,19 +65,19 @@ std::uint32_t u32(const Map& m, const char* key, std::uint32_t lo, std::uint32_t
 }
 
 /// A time in seconds from the emulator's start, [0, kTimeSMax].
-TimeNs at_time(const Map& m, const char* key, TimeNs fallback) {
-  return m.has(key) ? seconds_to_ns(ranged(m, key, 0.0, limits::kTimeSMax, 0.0)) : fallback;
+TimeNs atTime(const Map& m, const char* key, TimeNs fallback) {
+  return m.has(key) ? secondsToNs(ranged(m, key, 0.0, limits::kTimeSMax, 0.0)) : fallback;
 }
 
-void read_faults(const Reader& r, const YAML::Node& f, const std::string& path, NodeFaults* out) {
+void readFaults(const Reader& r, const YAML::Node& f, const std::string& path, NodeFaults* out) {
   const Map m(r, f, path, {"stop_heartbeat_at", "emcy_at", "emcy_code", "saturate_at"});
-  out->heartbeat_stop_at = at_time(m, "stop_heartbeat_at", out->heartbeat_stop_at);
-  out->emcy_at = at_time(m, "emcy_at", out->emcy_at);
+  out->heartbeat_stop_at = atTime(m, "stop_heartbeat_at", out->heartbeat_stop_at);
+  out->emcy_at = atTime(m, "emcy_at", out->emcy_at);
   out->emcy_code = static_cast<std::uint16_t>(m.integer("emcy_code", 1, 0xFFFF, out->emcy_code));
-  out->saturate_at = at_time(m, "saturate_at", out->saturate_at);
+  out->saturate_at = atTime(m, "saturate_at", out->saturate_at);
 }
 
-void read_joint(const Map& m, JointModel* j) {
+void readJoint(const Map& m, JointModel* j) {
   j->inertia = ranged(m, "inertia", 0.0, limits::kPhysicalMax, j->inertia, true);
   j->damping = ranged(m, "damping", 0.0, limits::kPhysicalMax, j->damping);
   j->torque_limit = ranged(m, "torque_limit", 0.0, limits::kPhysicalMax, j->torque_limit, true);
@@ -86,7 +86,7 @@ void read_joint(const Map& m, JointModel* j) {
 }
 
 /// Rated torque in N m -> 0x6076 units (mN m, u32): (0.001, 4294967.295] N m.
-std::uint32_t rated_torque(const Map& m, double fallback_nm) {
+std::uint32_t ratedTorque(const Map& m, double fallback_nm) {
   const double nm = ranged(m, "rated_torque", limits::kRatedTorqueMin, limits::kRatedTorqueMax, fallback_nm);
   return static_cast<std::uint32_t>(std::llround(nm * 1000.0));
 }
@@ -94,7 +94,7 @@ std::uint32_t rated_torque(const Map& m, double fallback_nm) {
 using mrqp::emulation::VendorProfile;
 
 /// `profile`: a name (lenient, strict) or a map of switches on top of `base` (lenient by default).
-VendorProfile read_profile(const Reader& r, const YAML::Node& n, const std::string& path) {
+VendorProfile readProfile(const Reader& r, const YAML::Node& n, const std::string& path) {
   if (n.IsScalar()) {
     const std::string name = r.name(n, path);
     if (name == "lenient") {
@@ -114,7 +114,7 @@ VendorProfile read_profile(const Reader& r, const YAML::Node& n, const std::stri
     r.fail(*b, m.at("base"), "expected lenient or strict, got " + scene::describe(*b));
   }
   VendorProfile p =
-      m.has("base") ? read_profile(r, m.require("base"), m.at("base")) : VendorProfile::lenient();
+      m.has("base") ? readProfile(r, m.require("base"), m.at("base")) : VendorProfile::lenient();
   p.tpdo_count = static_cast<std::uint8_t>(m.integer("tpdo_count", 1, 4, p.tpdo_count));
   p.abort_absent = m.boolean("abort_absent", p.abort_absent);
   p.abort_read_only = m.boolean("abort_read_only", p.abort_read_only);
@@ -153,7 +153,7 @@ double fraction(const Map& m, const char* key) {
   return v;
 }
 
-EmuConfig read_config(const Reader& r, const YAML::Node& root) {
+EmuConfig readConfig(const Reader& r, const YAML::Node& root) {
   EmuConfig c;
   const Map top(r, root, "",
                 {"interface", "step_ms", "boot_delay_ms", "duration", "increments_per_rev", "rated_torque",
@@ -167,14 +167,14 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root) {
       std::llround(ranged(top, "boot_delay_ms", 0.0, limits::kBootDelayMsMax, 2.0) * 1e6));
   c.duration_s = ranged(top, "duration", 0.0, limits::kTimeSMax, 0.0);
   const int ipr = top.integer("increments_per_rev", 1, INT_MAX, 524288);
-  const std::uint32_t rated = rated_torque(top, 1.0);
+  const std::uint32_t rated = ratedTorque(top, 1.0);
   if (const YAML::Node* p = top.find("profile")) {
-    c.profile = read_profile(r, *p, top.at("profile"));
+    c.profile = readProfile(r, *p, top.at("profile"));
   }
 
   JointModel def;
   if (const YAML::Node* j = top.find("joint")) {
-    read_joint(Map(r, *j, top.at("joint"), {"inertia", "damping", "torque_limit", "kp", "kd"}), &def);
+    readJoint(Map(r, *j, top.at("joint"), {"inertia", "damping", "torque_limit", "kp", "kd"}), &def);
   }
 
   const std::string nodes_path = top.at("nodes");
@@ -200,12 +200,12 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root) {
       id_path = m.at("node");
       e.scale.increments_per_rev =
           static_cast<std::uint32_t>(m.integer("increments_per_rev", 1, INT_MAX, ipr));
-      e.scale.rated_torque_mNm = rated_torque(m, rated / 1000.0);
-      read_joint(m, &e.joint);
+      e.scale.rated_torque_mNm = ratedTorque(m, rated / 1000.0);
+      readJoint(m, &e.joint);
       e.joint.initial_position =
           ranged(m, "initial_position", -limits::kPositionMax, limits::kPositionMax, 0.0);
       if (const YAML::Node* f = m.find("faults")) {
-        read_faults(r, *f, m.at("faults"), &e.faults);
+        readFaults(r, *f, m.at("faults"), &e.faults);
       }
     } else if (!n.IsScalar()) {
       r.fail(n, path, "expected a node id or a map, got " + scene::describe(n));
@@ -232,7 +232,7 @@ EmuConfig read_config(const Reader& r, const YAML::Node& root) {
 
 }  // namespace
 
-bool validate_config(const EmuConfig& c, const std::string& origin, std::string* error) {
+bool validateConfig(const EmuConfig& c, const std::string& origin, std::string* error) {
   auto fail = [&](const std::string& field, const std::string& what) {
     if (error != nullptr) {
       *error = origin + ": " + field + ": " + what;
@@ -278,7 +278,7 @@ bool validate_config(const EmuConfig& c, const std::string& origin, std::string*
     if (!(std::fabs(n.joint.initial_position) <= limits::kPositionMax)) {
       return fail(w + "initial_position", "must be in [-1000, 1000] rad");
     }
-    const TimeNs t_max = seconds_to_ns(limits::kTimeSMax);
+    const TimeNs t_max = secondsToNs(limits::kTimeSMax);
     for (const TimeNs t : {n.faults.heartbeat_stop_at, n.faults.emcy_at, n.faults.saturate_at}) {
       if (t != kNever && (t < 0 || t > t_max)) {
         return fail(w + "faults", "fault times must be in [0, 1e6] s");
@@ -308,12 +308,12 @@ bool validate_config(const EmuConfig& c, const std::string& origin, std::string*
   return true;
 }
 
-bool load_config(const std::string& path, EmuConfig* out, std::string* error) {
+bool loadConfig(const std::string& path, EmuConfig* out, std::string* error) {
   try {
     const Reader r(path);
     const YAML::Node root = scene::parseYamlDocument(scene::readTextFile(path), path);
-    const EmuConfig c = read_config(r, root);
-    if (!validate_config(c, path, error)) {
+    const EmuConfig c = readConfig(r, root);
+    if (!validateConfig(c, path, error)) {
       return false;
     }
     *out = c;
@@ -331,7 +331,7 @@ bool load_config(const std::string& path, EmuConfig* out, std::string* error) {
   }
 }
 
-std::string describe_config(const EmuConfig& c) {
+std::string describeConfig(const EmuConfig& c) {
   std::ostringstream o;
   o << "interface " << c.interface << ", physics step " << static_cast<double>(c.step) / 1e6
     << " ms, boot delay " << static_cast<double>(c.boot_delay) / 1e6 << " ms, duration "
@@ -375,7 +375,7 @@ std::string describe_config(const EmuConfig& c) {
   return o.str();
 }
 
-bool apply_fault_switch(const std::string& kind, const std::string& arg, EmuConfig* c, std::string* error) {
+bool applyFaultSwitch(const std::string& kind, const std::string& arg, EmuConfig* c, std::string* error) {
   // arg: N@T or N@T:code (T in seconds)
   const auto at = arg.find('@');
   auto fail = [&](const std::string& what) {

@@ -12,19 +12,19 @@ namespace mrqp::drive_emu {
 class SimDriveEmulator final : public mrqp::drivers::SimListener, private FrameSink {
  public:
   SimDriveEmulator(mrqp::drivers::SimNode& node, const EmuConfig& config) : node_(node), emu_(config, *this) {
-    node_.set_listener(this);
+    node_.setListener(this);
     rearm();
   }
-  void on_receive(mrqp::drivers::SimNode&, mrqp::drivers::ReceiveResult kind,
-                  const mrqp::drivers::RxFrame& rx) noexcept override {
+  void onReceive(mrqp::drivers::SimNode&, mrqp::drivers::ReceiveResult kind,
+                 const mrqp::drivers::RxFrame& rx) noexcept override {
     if (kind != mrqp::drivers::ReceiveResult::Frame) {
       return;
     }
     emu_.advance(rx.timestamp);
-    emu_.on_frame(rx.frame, rx.timestamp);
+    emu_.onFrame(rx.frame, rx.timestamp);
     rearm();
   }
-  void on_timer(mrqp::drivers::SimNode&, TimeNs now) noexcept override {
+  void onTimer(mrqp::drivers::SimNode&, TimeNs now) noexcept override {
     emu_.advance(now);
     rearm();
   }
@@ -32,7 +32,7 @@ class SimDriveEmulator final : public mrqp::drivers::SimListener, private FrameS
 
  private:
   void emit(const mrqp_fw_frame& frame, TimeNs) noexcept override { (void)node_.send(frame); }
-  void rearm() noexcept { node_.set_timer(std::max(emu_.next_event(), node_.bus().now())); }
+  void rearm() noexcept { node_.setTimer(std::max(emu_.nextEvent(), node_.bus().now())); }
 
   mrqp::drivers::SimNode& node_;
   DriveEmulator emu_;

@@ -17,12 +17,12 @@
 #include "drive_emu.hpp"
 
 using namespace mrqp::drive_emu;
-using mrqp::drivers::monotonic_now;
+using mrqp::drivers::monotonicNow;
 
 namespace {
 
 volatile sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
+void onSignal(int) { g_stop = 1; }
 
 class BusSink final : public FrameSink {
  public:
@@ -48,7 +48,7 @@ void usage() {
 }
 
 /// The whole of `s` as a finite number; false otherwise.
-bool parse_double(const std::string& s, double* out) {
+bool parseDouble(const std::string& s, double* out) {
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end != '\0' || !std::isfinite(v)) {
@@ -101,7 +101,7 @@ int run(int argc, char** argv) {
     } else if (a == "--duration" || a == "--drop" || a == "--corrupt" || a == "--seed") {
       const std::string v = value();
       double x = 0.0;
-      if (!parse_double(v, &x) || x < 0.0) {
+      if (!parseDouble(v, &x) || x < 0.0) {
         std::fprintf(stderr, "mrqp-drive-emu: %s: expected a number >= 0, got '%s'\n", a.c_str(), v.c_str());
         return 2;
       }
@@ -141,7 +141,7 @@ int run(int argc, char** argv) {
   }
   EmuConfig cfg;
   std::string err;
-  if (!load_config(config_path, &cfg, &err)) {
+  if (!loadConfig(config_path, &cfg, &err)) {
     std::fprintf(stderr, "mrqp-drive-emu: %s\n", err.c_str());
     return 2;
   }
@@ -165,18 +165,18 @@ int run(int argc, char** argv) {
                                       : mrqp::emulation::VendorProfile::lenient();
   }
   for (const auto& s : switches) {
-    if (!apply_fault_switch(s.first, s.second, &cfg, &err)) {
+    if (!applyFaultSwitch(s.first, s.second, &cfg, &err)) {
       std::fprintf(stderr, "mrqp-drive-emu: %s\n", err.c_str());
       return 2;
     }
   }
-  if (!validate_config(cfg, "command line", &err)) {
+  if (!validateConfig(cfg, "command line", &err)) {
     std::fprintf(stderr, "mrqp-drive-emu: %s\n", err.c_str());
     return 2;
   }
   if (check) {
     std::printf("mrqp-drive-emu: %s: OK, %zu node(s)\n%s", config_path.c_str(), cfg.nodes.size(),
-                describe_config(cfg).c_str());
+                describeConfig(cfg).c_str());
     return 0;
   }
 
@@ -188,29 +188,29 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "mrqp-drive-emu: %s: %s\n", cfg.interface.c_str(), err.c_str());
     return 1;
   }
-  signal(SIGINT, on_signal);
-  signal(SIGTERM, on_signal);
+  signal(SIGINT, onSignal);
+  signal(SIGTERM, onSignal);
   BusSink sink(bus);
   DriveEmulator emu(cfg, sink);
-  const TimeNs t0 = monotonic_now();
+  const TimeNs t0 = monotonicNow();
   const TimeNs end = cfg.duration_s > 0.0 ? t0 + static_cast<TimeNs>(cfg.duration_s * 1e9) : kNever;
   std::printf("mrqp-drive-emu: %zu node(s) on %s\n", cfg.nodes.size(), cfg.interface.c_str());
   std::fflush(stdout);
   while (g_stop == 0) {
-    const TimeNs now = monotonic_now();
+    const TimeNs now = monotonicNow();
     if (now >= end) {
       break;
     }
     emu.advance(now - t0);
     mrqp::drivers::RxFrame rx;
     while (bus.receive(rx) == mrqp::drivers::ReceiveResult::Frame) {
-      const TimeNs t = monotonic_now() - t0;
+      const TimeNs t = monotonicNow() - t0;
       emu.advance(t);
-      emu.on_frame(rx.frame, t);
+      emu.onFrame(rx.frame, t);
     }
-    const TimeNs wait_ns = emu.next_event() - (monotonic_now() - t0);
+    const TimeNs wait_ns = emu.nextEvent() - (monotonicNow() - t0);
     if (wait_ns > 0) {
-      pollfd p{bus.native_handle(), POLLIN, 0};
+      pollfd p{bus.nativeHandle(), POLLIN, 0};
       const int ms = static_cast<int>(std::min<TimeNs>(wait_ns / 1000000 + 1, 100));
       (void)::poll(&p, 1, ms);
     }
@@ -224,7 +224,7 @@ int run(int argc, char** argv) {
   for (std::size_t i = 0; i < emu.size(); ++i) {
     std::printf("  node %u: nmt=0x%02x cia402=%d (%s) position=%.4f rad comm_errors=%u%s\n",
                 cfg.nodes[i].node, static_cast<unsigned>(emu.nmt(i)), static_cast<int>(emu.state(i)),
-                mrqp_fw_cia402_state_str(emu.state(i)), emu.position(i), emu.comm_errors(i),
+                mrqp_fw_cia402_state_str(emu.state(i)), emu.position(i), emu.commErrors(i),
                 emu.state(i) == MRQP_FW_CIA402_OPERATION_ENABLED ? " LEFT ENABLED" : "");
   }
   return 0;

@@ -95,7 +95,7 @@ class LogWriter {
   std::thread thread_;
 };
 
-std::string flagNames(std::uint32_t flags) { return drivers::fault_flags_str(flags); }
+std::string flagNames(std::uint32_t flags) { return drivers::faultFlagsStr(flags); }
 
 /// The loop thread's allocations are counted while armed (tests/support's counting allocator);
 /// a build without it (sanitizers) counts nothing and reports −1.

@@ -1,7 +1,7 @@
 // mrqp-stream: streams a sine per joint through the ArmDriver on a SocketCAN interface at a fixed
 // rate (clock_nanosleep, absolute deadlines) for N cycles, checks the feedback, prints a summary
 // and exits non-zero on failure (README.md). Whatever ends it (the last cycle, SIGINT/SIGTERM, a
-// failed boot or enable), the drives are left stopped: ArmDriver::request_safe_exit (quick stop or
+// failed boot or enable), the drives are left stopped: ArmDriver::requestSafeExit (quick stop or
 // disable voltage, then NMT pre-operational or stop).
 #include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/drivers/bus_router.hpp>
@@ -52,7 +52,7 @@ struct Options {
 };
 
 volatile sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
+void onSignal(int) { g_stop = 1; }
 
 /// A fault seen during the run, kept for the report after the loop (no printing in the cycle).
 struct FaultEvent {
@@ -62,7 +62,7 @@ struct FaultEvent {
 };
 
 /// An unsigned number (decimal or 0x hex) within [0, max]; false if it is not one.
-bool parse_u32(const std::string& s, unsigned long max, unsigned long* out) {
+bool parseU32(const std::string& s, unsigned long max, unsigned long* out) {
   if (s.empty() || s[0] == '-') {
     return false;
   }
@@ -89,7 +89,7 @@ void usage() {
                "--config reads nodes and scales from a mrqp-drive-emu YAML file.\n");
 }
 
-bool parse_nodes(const std::string& s, std::vector<std::uint8_t>* out) {
+bool parseNodes(const std::string& s, std::vector<std::uint8_t>* out) {
   std::size_t pos = 0;
   while (pos < s.size()) {
     std::size_t end = s.find(',', pos);
@@ -111,7 +111,7 @@ bool parse_nodes(const std::string& s, std::vector<std::uint8_t>* out) {
   return !out->empty();
 }
 
-void add_ns(timespec* t, TimeNs ns) {
+void addNs(timespec* t, TimeNs ns) {
   t->tv_nsec += ns;
   while (t->tv_nsec >= 1000000000L) {
     t->tv_nsec -= 1000000000L;
@@ -119,7 +119,7 @@ void add_ns(timespec* t, TimeNs ns) {
   }
 }
 
-TimeNs to_ns(const timespec& t) { return static_cast<TimeNs>(t.tv_sec) * 1000000000 + t.tv_nsec; }
+TimeNs toNs(const timespec& t) { return static_cast<TimeNs>(t.tv_sec) * 1000000000 + t.tv_nsec; }
 
 }  // namespace
 
@@ -137,7 +137,7 @@ static int unwrappedMain(int argc, char** argv) {
     if (a == "--interface") {
       o.interface = value();
     } else if (a == "--nodes") {
-      if (!parse_nodes(value(), &o.nodes)) {
+      if (!parseNodes(value(), &o.nodes)) {
         std::fprintf(stderr, "mrqp-stream: --nodes: expected e.g. 1-7 or 1,2,3 (ids 1..127)\n");
         return 2;
       }
@@ -171,14 +171,14 @@ static int unwrappedMain(int argc, char** argv) {
       o.tpdo_rtr_allowed = true;
     } else if (a == "--comm-cycle-us") {
       unsigned long v = 0;
-      if (!parse_u32(value(), 0xFFFFFFFFul, &v)) {
+      if (!parseU32(value(), 0xFFFFFFFFul, &v)) {
         std::fprintf(stderr, "mrqp-stream: --comm-cycle-us: expected microseconds 0..4294967295\n");
         return 2;
       }
       o.comm_cycle_us = static_cast<long>(v);
     } else if (a == "--device-type" || a == "--vendor-id" || a == "--product-code") {
       unsigned long v = 0;
-      if (!parse_u32(value(), 0xFFFFFFFFul, &v)) {
+      if (!parseU32(value(), 0xFFFFFFFFul, &v)) {
         std::fprintf(stderr, "mrqp-stream: %s: expected a 32-bit unsigned number (0x... for hex)\n",
                      a.c_str());
         return 2;
@@ -227,7 +227,7 @@ static int unwrappedMain(int argc, char** argv) {
   if (!o.yaml.empty()) {
     mrqp::drive_emu::EmuConfig emu;
     std::string err;
-    if (!mrqp::drive_emu::load_config(o.yaml, &emu, &err)) {
+    if (!mrqp::drive_emu::loadConfig(o.yaml, &emu, &err)) {
       std::fprintf(stderr, "mrqp-stream: %s\n", err.c_str());
       return 2;
     }
@@ -256,7 +256,7 @@ static int unwrappedMain(int argc, char** argv) {
       cfg.drives.push_back(d);
     }
   }
-  cfg.cycle_period = period_of_hz(o.rate);
+  cfg.cycle_period = periodOfHz(o.rate);
   cfg.producer_heartbeat_ms = static_cast<std::uint16_t>(o.heartbeat_ms);
   cfg.heartbeat_timeout = milliseconds(o.heartbeat_timeout_ms);
   cfg.sdo_timeout = milliseconds(o.sdo_timeout_ms);
@@ -285,7 +285,7 @@ static int unwrappedMain(int argc, char** argv) {
     std::fprintf(stderr, "mrqp-stream: %s\n", err.c_str());
     return 2;
   }
-  const std::size_t n = arm->drive_count();
+  const std::size_t n = arm->driveCount();
   int hb_drive = -1;
   for (std::size_t j = 0; j < n; ++j) {
     if (cfg.drives[j].node == o.expect_heartbeat_loss) {
@@ -298,8 +298,8 @@ static int unwrappedMain(int argc, char** argv) {
     return 2;
   }
 
-  signal(SIGINT, on_signal);
-  signal(SIGTERM, on_signal);
+  signal(SIGINT, onSignal);
+  signal(SIGTERM, onSignal);
 
   // Setup done: everything below is the cycle (no allocation in the loop).
   std::vector<double> q0(n, 0.0);
@@ -335,20 +335,20 @@ static int unwrappedMain(int argc, char** argv) {
   clock_gettime(CLOCK_MONOTONIC, &next);
   const TimeNs period = cfg.cycle_period;
   auto cycle_start = [&]() {
-    add_ns(&next, period);
+    addNs(&next, period);
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
     timespec now;
     clock_gettime(CLOCK_MONOTONIC, &now);
-    const TimeNs late = to_ns(now) - to_ns(next);
+    const TimeNs late = toNs(now) - toNs(next);
     worst_late = std::max(worst_late, late);
     if (late > period) {
       ++overruns;
     }
-    return to_ns(next);
+    return toNs(next);
   };
 
   // Boot and enable (at the same rate).
-  TimeNs now = to_ns(next);
+  TimeNs now = toNs(next);
   arm->start(now);
   long boot_cycles = 0;
   const long boot_limit = static_cast<long>(o.rate * 10.0);
@@ -368,11 +368,11 @@ static int unwrappedMain(int argc, char** argv) {
 
   // The safe exit: run the cycle until the drives are stopped and left in the NMT state asked for.
   auto safe_exit = [&]() -> bool {
-    arm->request_safe_exit(now);
+    arm->requestSafeExit(now);
     const long limit =
         static_cast<long>(static_cast<double>(cfg.exit_timeout) / static_cast<double>(period)) + 20;
     long k = 0;
-    while (!arm->safe_exit_done() && k < limit) {
+    while (!arm->safeExitDone() && k < limit) {
       now = cycle_start();
       router.poll(now);
       (void)arm->update(now);
@@ -384,21 +384,21 @@ static int unwrappedMain(int argc, char** argv) {
     router.poll(now);
     (void)arm->update(now);
     std::printf("mrqp-stream: safe exit: %s after %ld cycles (%s, then %s)\n",
-                arm->safe_exit_done() ? "drives stopped" : "NOT completed", k,
+                arm->safeExitDone() ? "drives stopped" : "NOT completed", k,
                 cfg.exit_stop == ExitStop::QuickStop ? "quick stop" : "disable voltage",
                 cfg.exit_nmt == ExitNmt::PreOperational ? "NMT pre-operational"
                 : cfg.exit_nmt == ExitNmt::Stopped      ? "NMT stop"
                                                         : "NMT state unchanged");
-    return arm->safe_exit_done();
+    return arm->safeExitDone();
   };
   auto print_events = [&]() {
     for (std::size_t e = 0; e < event_count; ++e) {
       std::printf("mrqp-stream: cycle %ld: drive %zu: %s\n", events[e].cycle, events[e].drive,
-                  describe_device_faults(events[e].faults).c_str());
+                  describeDeviceFaults(events[e].faults).c_str());
     }
   };
   auto print_faults = [&](const FaultReport& r) {
-    const std::string text = describe_faults(r, "drive");
+    const std::string text = describeFaults(r, "drive");
     if (!text.empty()) {
       std::printf("mrqp-stream: faults:\n%s", text.c_str());
     }
@@ -406,15 +406,15 @@ static int unwrappedMain(int argc, char** argv) {
 
   if (arm->phase() != ArmPhase::Running) {
     std::printf("mrqp-stream: FAIL: boot ended in phase %s after %ld cycles, flags %s\n",
-                arm_phase_str(arm->phase()), boot_cycles, fault_flags_str(all_flags).c_str());
+                armPhaseStr(arm->phase()), boot_cycles, faultFlagsStr(all_flags).c_str());
     print_faults(arm->faults());
     print_events();
     safe_exit();
     return 1;
   }
-  arm->request_enable(now);
+  arm->requestEnable(now);
   long enable_cycles = 0;
-  while (!arm->all_enabled() && enable_cycles < boot_limit && g_stop == 0) {
+  while (!arm->allEnabled() && enable_cycles < boot_limit && g_stop == 0) {
     now = cycle_start();
     router.poll(now);
     const FaultReport& r = arm->update(now);
@@ -424,9 +424,9 @@ static int unwrappedMain(int argc, char** argv) {
     ++enable_cycles;
     ++cycle_no;
   }
-  if (!arm->all_enabled()) {
+  if (!arm->allEnabled()) {
     std::printf("mrqp-stream: FAIL: drives not enabled after %ld cycles, flags %s%s\n", enable_cycles,
-                fault_flags_str(all_flags).c_str(), g_stop != 0 ? " (signalled)" : "");
+                faultFlagsStr(all_flags).c_str(), g_stop != 0 ? " (signalled)" : "");
     print_faults(arm->faults());
     print_events();
     safe_exit();
@@ -487,7 +487,7 @@ static int unwrappedMain(int argc, char** argv) {
     const double t = static_cast<double>(k) / o.rate;
     for (std::size_t j = 0; j < n; ++j) {
       const double target = q0[j] + o.amplitude * std::sin(w * t) * (1.0 - 0.1 * static_cast<double>(j % 5));
-      (void)arm->set_position(j, target);
+      (void)arm->setPosition(j, target);
       sent[j] = target;
     }
     frames_sent += arm->transmit(now);
@@ -496,7 +496,7 @@ static int unwrappedMain(int argc, char** argv) {
   const DeviceFaults* fin_devices = arm->faults().devices;
   std::vector<DeviceFaults> fin_copy(fin_devices, fin_devices + n);  // before the exit rewrites them
   const BusFaults fin_bus = arm->faults().buses[0];
-  const SyncStats sync = arm->sync_stats(0);
+  const SyncStats sync = arm->syncStats(0);
   const bool exited = safe_exit();
   // Summary.
   std::printf(
@@ -515,7 +515,7 @@ static int unwrappedMain(int argc, char** argv) {
         cfg.drives[j].node, max_err[j], df.emcy_count, df.emcy_code, df.corrupt_frames,
         static_cast<unsigned long long>(hb_lost[j]),
         hb_lost_at[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at[j]) / 1e6, df.tolerated_aborts,
-        df.recoveries, nmt_state_str(df.nmt_state));
+        df.recoveries, nmtStateStr(df.nmt_state));
   }
   std::printf(
       "mrqp-stream: sync: syncs=%llu intervals=%llu period_us=%.1f min_us=%.1f max_us=%.1f "
@@ -525,7 +525,7 @@ static int unwrappedMain(int argc, char** argv) {
       static_cast<double>(sync.period) / 1e3, static_cast<double>(sync.min_interval) / 1e3,
       static_cast<double>(sync.max_interval) / 1e3, static_cast<double>(sync.max_jitter) / 1e3,
       sync.mean_abs_jitter_ns / 1e3, sync.timeout_factor, static_cast<unsigned long long>(sync.over_timeout),
-      bus.echoes_own() ? "timed on the TX echo" : "timed at transmit");
+      bus.echoesOwn() ? "timed on the TX echo" : "timed at transmit");
   print_events();
   const BusFaults& bf = fin_bus;
   std::printf(
@@ -535,14 +535,14 @@ static int unwrappedMain(int argc, char** argv) {
       static_cast<unsigned long long>(bf.unknown_total), static_cast<unsigned long long>(bf.rejected_total),
       static_cast<unsigned long long>(bf.error_events_total),
       static_cast<unsigned long long>(bf.tx_queue_full_total));
-  std::printf("mrqp-stream: flags seen: %s\n", fault_flags_str(all_flags).c_str());
+  std::printf("mrqp-stream: flags seen: %s\n", faultFlagsStr(all_flags).c_str());
   bool ok = fail_cycles == 0 && exited && !signalled;
   if (signalled) {
     std::printf("mrqp-stream: FAIL: stopped by a signal after %ld of %ld cycles\n", streamed, o.cycles);
   }
   if (!ok) {
     std::printf("mrqp-stream: FAIL: %llu cycle(s) failed: %s\n", static_cast<unsigned long long>(fail_cycles),
-                fault_flags_str(fail_flags).c_str());
+                faultFlagsStr(fail_flags).c_str());
   }
   if (hb_drive >= 0) {
     if (hb_lost_at[static_cast<std::size_t>(hb_drive)] < 0) {

@@ -16,7 +16,7 @@ constexpr std::uint32_t kAckIgnore = 1u;            // not an abort code: acknow
 TimeNs ms(std::uint32_t v) noexcept { return static_cast<TimeNs>(v) * 1000000; }
 }  // namespace
 
-void EmulatedCia402Drive::Host::on_nmt_reset(bool) noexcept {}
+void EmulatedCia402Drive::Host::onNmtReset(bool) noexcept {}
 
 void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept {
   if (silent_) {
@@ -31,11 +31,11 @@ void EmulatedCia402Drive::send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept {
 
 EmulatedCia402Drive::EmulatedCia402Drive(Host& host, const Options& options) noexcept
     : host_(host), options_(options) {
-  reset_od(false);
+  resetOd(false);
   boot_at_ = options_.boot_delay;  // power-on: initialisation, then the boot-up message
 }
 
-void EmulatedCia402Drive::reset_od(bool communication_only) noexcept {
+void EmulatedCia402Drive::resetOd(bool communication_only) noexcept {
   const std::uint32_t n = options_.node;
   const Entry comm[] = {
       {0x1000, 0, 4, false, options_.profile.device_type},  // device type: CiA 402 drive
@@ -133,7 +133,7 @@ const EmulatedCia402Drive::Entry* EmulatedCia402Drive::find(std::uint16_t index,
   return nullptr;
 }
 
-bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept {
+bool EmulatedCia402Drive::objectExists(std::uint16_t index) const noexcept {
   for (std::size_t i = 0; i < od_count_; ++i) {
     if (od_[i].index == index) {
       return true;
@@ -142,7 +142,7 @@ bool EmulatedCia402Drive::object_exists(std::uint16_t index) const noexcept {
   return false;
 }
 
-std::uint32_t EmulatedCia402Drive::od_value(std::uint16_t index, std::uint8_t sub) const noexcept {
+std::uint32_t EmulatedCia402Drive::odValue(std::uint16_t index, std::uint8_t sub) const noexcept {
   const Entry* e = find(index, sub);
   return e != nullptr ? e->value : 0u;
 }
@@ -156,38 +156,38 @@ bool EmulatedCia402Drive::od(std::uint16_t index, std::uint8_t sub, std::uint32_
   return true;
 }
 
-bool EmulatedCia402Drive::pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob,
-                                 mrqp_fw_arm_pdo which) const noexcept {
+bool EmulatedCia402Drive::pdoOk(std::uint16_t comm, std::uint16_t map, std::uint32_t cob,
+                                mrqp_fw_arm_pdo which) const noexcept {
   std::uint32_t comm_cob = 0;
   if (!od(comm, 1, &comm_cob) || (comm_cob & ~kNoRtr) != cob ||
-      od_value(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
+      odValue(comm, 2) != MRQP_FW_PDO_TRANSMISSION_SYNC) {
     return false;
   }
   std::uint32_t entries[4] = {0, 0, 0, 0};
   const unsigned n = mrqp_fw_arm_pdo_mapping(which, entries);
-  if (od_value(map, 0) != n) {
+  if (odValue(map, 0) != n) {
     return false;
   }
   for (unsigned k = 0; k < n; ++k) {
-    if (od_value(map, static_cast<std::uint8_t>(k + 1u)) != entries[k]) {
+    if (odValue(map, static_cast<std::uint8_t>(k + 1u)) != entries[k]) {
       return false;
     }
   }
   return true;
 }
 
-bool EmulatedCia402Drive::rpdo1_configured() const noexcept {
-  return pdo_ok(0x1400, 0x1600, MRQP_FW_COB_RPDO1_BASE + options_.node, MRQP_FW_ARM_RPDO1);
+bool EmulatedCia402Drive::rpdo1Configured() const noexcept {
+  return pdoOk(0x1400, 0x1600, MRQP_FW_COB_RPDO1_BASE + options_.node, MRQP_FW_ARM_RPDO1);
 }
-bool EmulatedCia402Drive::tpdo1_configured() const noexcept {
-  return pdo_ok(0x1800, 0x1A00, MRQP_FW_COB_TPDO1_BASE + options_.node, MRQP_FW_ARM_TPDO1);
+bool EmulatedCia402Drive::tpdo1Configured() const noexcept {
+  return pdoOk(0x1800, 0x1A00, MRQP_FW_COB_TPDO1_BASE + options_.node, MRQP_FW_ARM_TPDO1);
 }
-bool EmulatedCia402Drive::tpdo2_configured() const noexcept {
-  return pdo_ok(0x1801, 0x1A01, MRQP_FW_COB_TPDO2_BASE + options_.node, MRQP_FW_ARM_TPDO2);
+bool EmulatedCia402Drive::tpdo2Configured() const noexcept {
+  return pdoOk(0x1801, 0x1A01, MRQP_FW_COB_TPDO2_BASE + options_.node, MRQP_FW_ARM_TPDO2);
 }
 
-TimeNs EmulatedCia402Drive::sync_deadline() const noexcept {
-  const std::uint32_t period_us = od_value(0x1006, 0);
+TimeNs EmulatedCia402Drive::syncDeadline() const noexcept {
+  const std::uint32_t period_us = odValue(0x1006, 0);
   if (options_.profile.sync_timeout_factor <= 0.0 || nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL ||
       last_sync_ == kNever || period_us == 0u) {
     return kNever;
@@ -196,16 +196,16 @@ TimeNs EmulatedCia402Drive::sync_deadline() const noexcept {
          static_cast<TimeNs>(options_.profile.sync_timeout_factor * static_cast<double>(period_us) * 1000.0);
 }
 
-TimeNs EmulatedCia402Drive::next_event() const noexcept {
+TimeNs EmulatedCia402Drive::nextEvent() const noexcept {
   TimeNs t = boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
-  const TimeNs sync = sync_deadline();
+  const TimeNs sync = syncDeadline();
   if (sync != kNever && sync + 1 < t) {
     t = sync + 1;  // the timeout is a gap longer than the deadline
   }
   return t;
 }
 
-void EmulatedCia402Drive::comm_error(TimeNs now) noexcept {
+void EmulatedCia402Drive::commError(TimeNs now) noexcept {
   // CiA 301: EMCY 0x8100 (communication), error register generic | communication, then the
   // behaviour of 0x1029:01: 0 pre-operational (from Operational), 1 no change, 2 stopped.
   last_sync_ = kNever;
@@ -222,7 +222,7 @@ void EmulatedCia402Drive::comm_error(TimeNs now) noexcept {
   if (!mrqp_fw_pack_failed(mrqp_fw_emcy_pack(options_.node, &e, &f))) {
     send(f, now, false);
   }
-  const std::uint32_t behaviour = od_value(0x1029, 1);
+  const std::uint32_t behaviour = odValue(0x1029, 1);
   if (behaviour == 0u && nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL) {
     nmt_ = MRQP_FW_NMT_STATE_PRE_OPERATIONAL;
   } else if (behaviour == 2u) {
@@ -230,7 +230,7 @@ void EmulatedCia402Drive::comm_error(TimeNs now) noexcept {
   }
 }
 
-std::uint16_t EmulatedCia402Drive::other_status_bits() const noexcept {
+std::uint16_t EmulatedCia402Drive::otherStatusBits() const noexcept {
   if (!options_.profile.statusword_bits) {
     return MRQP_FW_SW_VOLTAGE_ENABLED;
   }
@@ -252,10 +252,10 @@ std::uint16_t EmulatedCia402Drive::other_status_bits() const noexcept {
   return bits;
 }
 
-void EmulatedCia402Drive::power_on(TimeNs now) noexcept {
+void EmulatedCia402Drive::powerOn(TimeNs now) noexcept {
   nmt_ = MRQP_FW_NMT_STATE_BOOTUP;
   state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
-  reset_od(false);
+  resetOd(false);
   heartbeat_due_ = kNever;
   boot_at_ = now + options_.boot_delay;
   last_sync_ = kNever;
@@ -265,13 +265,13 @@ void EmulatedCia402Drive::power_on(TimeNs now) noexcept {
   rpdo_pending_ = false;
 }
 
-void EmulatedCia402Drive::abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
+void EmulatedCia402Drive::abortOnWrite(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
   abort_index_ = index;
   abort_sub_ = sub;
   abort_code_ = code;
 }
 
-void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept {
+void EmulatedCia402Drive::raiseFault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept {
   state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT, nullptr);
   error_code_ = code;
   mrqp_fw_emcy e{};
@@ -284,9 +284,9 @@ void EmulatedCia402Drive::raise_fault(std::uint16_t code, std::uint8_t error_reg
 }
 
 void EmulatedCia402Drive::advance(TimeNs now) noexcept {
-  const TimeNs sync = sync_deadline();
+  const TimeNs sync = syncDeadline();
   if (sync != kNever && now > sync) {
-    comm_error(now);
+    commError(now);
   }
   if (boot_at_ <= now) {
     // End of initialisation: boot-up message, then pre-operational.
@@ -296,11 +296,11 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept {
     send(f, now, false);
     nmt_ = mrqp_fw_nmt_boot_complete(nmt_);
     state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_INIT_COMPLETE, nullptr);
-    const std::uint32_t period = od_value(0x1017, 0);
+    const std::uint32_t period = odValue(0x1017, 0);
     heartbeat_due_ = period > 0u ? now + ms(period) : kNever;
   }
   if (heartbeat_due_ <= now) {
-    const std::uint32_t period = od_value(0x1017, 0);
+    const std::uint32_t period = odValue(0x1017, 0);
     if (period == 0u || now >= heartbeat_stop_at_) {
       heartbeat_due_ = kNever;
       return;
@@ -315,9 +315,9 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept {
   }
 }
 
-EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+EmulatedCia402Drive::Received EmulatedCia402Drive::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id == MRQP_FW_COB_NMT) {
-    on_nmt(f, now);
+    onNmt(f, now);
     return Received::Nmt;
   }
   if (boot_at_ != kNever || nmt_ == MRQP_FW_NMT_STATE_BOOTUP) {
@@ -325,17 +325,17 @@ EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame&
   }
   if (f.id == MRQP_FW_COB_SDO_RX_BASE + options_.node &&
       (nmt_ == MRQP_FW_NMT_STATE_PRE_OPERATIONAL || nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL)) {
-    on_sdo(f, now);
+    onSdo(f, now);
     return Received::Sdo;
   }
   if (nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL) {
     return Received::Nothing;
   }
   if (f.id == MRQP_FW_COB_SYNC) {
-    on_sync(now);
+    onSync(now);
     return Received::Sync;
   }
-  if (f.id == MRQP_FW_COB_RPDO1_BASE + options_.node && rpdo1_configured()) {
+  if (f.id == MRQP_FW_COB_RPDO1_BASE + options_.node && rpdo1Configured()) {
     mrqp_fw_arm_rpdo1 p;
     if (mrqp_fw_arm_unpack_rpdo1(&f, options_.node, &p) == MRQP_FW_OK) {
       rpdo_controlword_ = p.controlword;
@@ -348,7 +348,7 @@ EmulatedCia402Drive::Received EmulatedCia402Drive::on_frame(const mrqp_fw_frame&
   return Received::Nothing;
 }
 
-void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
+void EmulatedCia402Drive::onNmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
   mrqp_fw_nmt_cmd cmd;
   std::uint8_t target = 0;
   if (mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || !mrqp_fw_nmt_addresses(target, options_.node)) {
@@ -357,7 +357,7 @@ void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
   const mrqp_fw_nmt_state next = mrqp_fw_nmt_next_state(nmt_, cmd);
   if (next == MRQP_FW_NMT_STATE_BOOTUP && (cmd == MRQP_FW_NMT_RESET_NODE || cmd == MRQP_FW_NMT_RESET_COMM)) {
     const bool application = cmd == MRQP_FW_NMT_RESET_NODE;
-    reset_od(!application);
+    resetOd(!application);
     if (application) {
       state_ = MRQP_FW_CIA402_NOT_READY_TO_SWITCH_ON;
       controlword_ = 0;
@@ -369,7 +369,7 @@ void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
     boot_at_ = now + options_.boot_delay;
     last_sync_ = kNever;
     comm_error_active_ = false;
-    host_.on_nmt_reset(application);
+    host_.onNmtReset(application);
     return;
   }
   if (next != MRQP_FW_NMT_STATE_OPERATIONAL) {
@@ -378,7 +378,7 @@ void EmulatedCia402Drive::on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
   nmt_ = next;
 }
 
-std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) const noexcept {
+std::uint32_t EmulatedCia402Drive::checkWrite(const Entry& e, std::uint32_t v) const noexcept {
   const VendorProfile& p = options_.profile;
   if (!e.writable) {
     return p.abort_read_only ? MRQP_FW_SDO_ABORT_READ_ONLY : kAckIgnore;
@@ -388,16 +388,16 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
   const bool is_comm = (i >= 0x1400 && i <= 0x1403) || (i >= 0x1800 && i <= 0x1803);
   if (p.pdo_rules && is_map) {
     const std::uint16_t comm = static_cast<std::uint16_t>(i - 0x200u);
-    if ((od_value(comm, 1) & kPdoInvalid) == 0u) {
+    if ((odValue(comm, 1) & kPdoInvalid) == 0u) {
       return MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE;  // mapping changes only while the PDO is disabled
     }
-    if (e.sub > 0 && od_value(i, 0) != 0u) {
+    if (e.sub > 0 && odValue(i, 0) != 0u) {
       return MRQP_FW_SDO_ABORT_PARAM_INCOMPATIBLE;  // entries only while the entry count is 0
     }
     if (e.sub == 0 && v > 0u) {
       std::uint32_t bits = 0;
       for (std::uint32_t k = 1; k <= v && k <= 4u; ++k) {
-        const std::uint32_t entry = od_value(i, static_cast<std::uint8_t>(k));
+        const std::uint32_t entry = odValue(i, static_cast<std::uint8_t>(k));
         const std::uint16_t obj = static_cast<std::uint16_t>(entry >> 16);
         if (entry == 0u ||
             !(obj == 0x6040 || obj == 0x6041 || obj == 0x607A || obj == 0x6064 || obj == 0x6071 ||
@@ -412,9 +412,9 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
     }
   }
   if (is_comm && e.sub == 1) {
-    const bool now_valid = (od_value(i, 1) & kPdoInvalid) == 0u;
+    const bool now_valid = (odValue(i, 1) & kPdoInvalid) == 0u;
     const bool to_valid = (v & kPdoInvalid) == 0u;
-    if (p.pdo_rules && now_valid && to_valid && v != od_value(i, 1)) {
+    if (p.pdo_rules && now_valid && to_valid && v != odValue(i, 1)) {
       return MRQP_FW_SDO_ABORT_INVALID_VALUE;  // change the COB-ID only while disabled
     }
     if (p.rtr_check && i >= 0x1800u && to_valid && (v & kNoRtr) == 0u) {
@@ -442,7 +442,7 @@ std::uint32_t EmulatedCia402Drive::check_write(const Entry& e, std::uint32_t v) 
   return 0u;
 }
 
-void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
+void EmulatedCia402Drive::onSdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
   const TimeNs at = now + options_.response_delay;
   mrqp_fw_sdo_msg m;
   mrqp_fw_frame out;
@@ -463,14 +463,14 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
       abort = MRQP_FW_SDO_ABORT_COMMAND;  // segmented writes are not needed by this drive
     } else if (e == nullptr) {
       abort = !options_.profile.abort_absent ? kAckIgnore
-              : object_exists(m.index)       ? MRQP_FW_SDO_ABORT_NO_SUBINDEX
+              : objectExists(m.index)        ? MRQP_FW_SDO_ABORT_NO_SUBINDEX
                                              : MRQP_FW_SDO_ABORT_NO_OBJECT;
     } else if (m.n != e->size) {
       abort = MRQP_FW_SDO_ABORT_TYPE_LENGTH;
     } else if (abort_code_ != 0u && m.index == abort_index_ && m.subindex == abort_sub_) {
       abort = abort_code_;
     } else {
-      abort = check_write(*e, v);
+      abort = checkWrite(*e, v);
     }
     if (abort == kAckIgnore) {
       abort = 0;
@@ -492,7 +492,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
     }
   } else if (m.kind == MRQP_FW_SDO_UPLOAD_INIT_REQ) {
     if (e == nullptr) {
-      abort = object_exists(m.index) ? MRQP_FW_SDO_ABORT_NO_SUBINDEX : MRQP_FW_SDO_ABORT_NO_OBJECT;
+      abort = objectExists(m.index) ? MRQP_FW_SDO_ABORT_NO_SUBINDEX : MRQP_FW_SDO_ABORT_NO_OBJECT;
     } else {
       std::uint8_t d[4];
       for (unsigned k = 0; k < 4u; ++k) {
@@ -509,7 +509,7 @@ void EmulatedCia402Drive::on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept {
   send(out, at, false);
 }
 
-void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
+void EmulatedCia402Drive::onSync(TimeNs now) noexcept {
   const TimeNs at = now + options_.response_delay;
   ++syncs_;
   last_sync_ = now;
@@ -541,17 +541,17 @@ void EmulatedCia402Drive::on_sync(TimeNs now) noexcept {
     (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset
     send(f, at, false);
   }
-  const Feedback fb = host_.on_sync(*this, new_targets, now);
+  const Feedback fb = host_.onSync(*this, new_targets, now);
   if (pdo_silent_) {
     return;
   }
   mrqp_fw_frame f;
-  if (tpdo1_configured()) {
-    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, other_status_bits()), fb.position, fb.torque};
+  if (tpdo1Configured()) {
+    const mrqp_fw_arm_tpdo1 t{mrqp_fw_cia402_statusword(state_, otherStatusBits()), fb.position, fb.torque};
     (void)mrqp_fw_arm_pack_tpdo1(options_.node, &t, &f);
     send(f, at, true);
   }
-  if (tpdo2_configured()) {
+  if (tpdo2Configured()) {
     const mrqp_fw_arm_tpdo2 t{fb.velocity, error_code_, force_mode_ ? forced_mode_ : mode()};
     (void)mrqp_fw_arm_pack_tpdo2(options_.node, &t, &f);
     send(f, at, true);

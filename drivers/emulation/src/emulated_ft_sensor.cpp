@@ -8,7 +8,7 @@ namespace mrqp::emulation {
 EmulatedFtSensor::EmulatedFtSensor(Host& host, const Options& options) noexcept
     : host_(host), options_(options) {}
 
-bool EmulatedFtSensor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+bool EmulatedFtSensor::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if ((f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return false;
   }

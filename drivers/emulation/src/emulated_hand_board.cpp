@@ -27,14 +27,14 @@ std::uint8_t EmulatedHandBoard::status() const noexcept {
   return static_cast<std::uint8_t>(st);
 }
 
-void EmulatedHandBoard::servo_off(TimeNs now) noexcept {
+void EmulatedHandBoard::servoOff(TimeNs now) noexcept {
   for (std::size_t j = 0; j < options_.joints; ++j) {
     servo_[j] = ServoCommand{};
     host_.command(options_.joint + j, servo_[j], now);
   }
 }
 
-void EmulatedHandBoard::set_mode(std::uint8_t mode, TimeNs now) noexcept {
+void EmulatedHandBoard::setMode(std::uint8_t mode, TimeNs now) noexcept {
   if (mode == MRQP_FW_HAND_MODE_HOLD && mode_ != MRQP_FW_HAND_MODE_HOLD) {
     for (std::size_t j = 0; j < options_.joints; ++j) {
       ServoCommand s;
@@ -46,12 +46,12 @@ void EmulatedHandBoard::set_mode(std::uint8_t mode, TimeNs now) noexcept {
       host_.command(options_.joint + j, s, now);
     }
   } else if (mode == MRQP_FW_HAND_MODE_DISABLED && mode_ != MRQP_FW_HAND_MODE_DISABLED) {
-    servo_off(now);
+    servoOff(now);
   }
   mode_ = mode;
 }
 
-void EmulatedHandBoard::power_on(TimeNs now) noexcept {
+void EmulatedHandBoard::powerOn(TimeNs now) noexcept {
   faulted_ = false;
   timed_out_ = false;
   crc_error_seen_ = false;
@@ -59,16 +59,16 @@ void EmulatedHandBoard::power_on(TimeNs now) noexcept {
   seq_echo_ = 0;
   have_measured_ = false;
   mode_ = MRQP_FW_HAND_MODE_DISABLED;
-  servo_off(now);
+  servoOff(now);
 }
 
-void EmulatedHandBoard::raise_fault(TimeNs now) noexcept {
+void EmulatedHandBoard::raiseFault(TimeNs now) noexcept {
   faulted_ = true;
   mode_ = MRQP_FW_HAND_MODE_DISABLED;
-  servo_off(now);
+  servoOff(now);
 }
 
-TimeNs EmulatedHandBoard::next_event() const noexcept {
+TimeNs EmulatedHandBoard::nextEvent() const noexcept {
   if (options_.command_timeout <= 0 || mode_ == MRQP_FW_HAND_MODE_DISABLED ||
       mode_ == MRQP_FW_HAND_MODE_HOLD) {
     return kNever;
@@ -77,13 +77,13 @@ TimeNs EmulatedHandBoard::next_event() const noexcept {
 }
 
 void EmulatedHandBoard::advance(TimeNs now) noexcept {
-  if (next_event() <= now) {
+  if (nextEvent() <= now) {
     timed_out_ = true;
-    set_mode(MRQP_FW_HAND_MODE_HOLD, now);
+    setMode(MRQP_FW_HAND_MODE_HOLD, now);
   }
 }
 
-bool EmulatedHandBoard::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+bool EmulatedHandBoard::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id != MRQP_FW_HAND_FD_CMD_ID_BASE + options_.board || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return false;
   }
@@ -101,7 +101,7 @@ bool EmulatedHandBoard::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
     faulted_ = false;
   }
   if (!faulted_) {
-    set_mode(c.mode, now);
+    setMode(c.mode, now);
     for (unsigned j = 0; j < c.count; ++j) {
       const std::size_t joint = c.first_joint + j;
       ServoCommand s;

@@ -7,7 +7,7 @@ namespace mrqp::emulation {
 
 EmulatedImu::EmulatedImu(Host& host, const Options& options) noexcept : host_(host), options_(options) {}
 
-bool EmulatedImu::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+bool EmulatedImu::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id != MRQP_FW_COB_SYNC || (f.flags & MRQP_FW_FRAME_EXT) != 0u) {
     return false;
   }

@@ -6,24 +6,24 @@ namespace mrqp::emulation {
 EmulatedMitMotor::EmulatedMitMotor(JointHost& host, const Options& options) noexcept
     : host_(host), options_(options) {}
 
-void EmulatedMitMotor::power_on(TimeNs now) noexcept {
+void EmulatedMitMotor::powerOn(TimeNs now) noexcept {
   faulted_ = false;
   zero_ = 0.0;
   have_last_ = false;
-  set_servo(ServoCommand{}, now);
+  setServo(ServoCommand{}, now);
 }
 
-void EmulatedMitMotor::raise_fault(TimeNs now) noexcept {
+void EmulatedMitMotor::raiseFault(TimeNs now) noexcept {
   faulted_ = true;
-  set_servo(ServoCommand{}, now);
+  setServo(ServoCommand{}, now);
 }
 
-void EmulatedMitMotor::set_servo(const ServoCommand& s, TimeNs now) noexcept {
+void EmulatedMitMotor::setServo(const ServoCommand& s, TimeNs now) noexcept {
   servo_ = s;
   host_.command(options_.joint, servo_, now);
 }
 
-bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
+bool EmulatedMitMotor::onFrame(const mrqp_fw_frame& f, TimeNs now) noexcept {
   if (f.id != options_.motor_id ||
       (f.flags & (MRQP_FW_FRAME_EXT | MRQP_FW_FRAME_RTR | MRQP_FW_FRAME_FD)) != 0u) {
     return false;
@@ -40,11 +40,11 @@ bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
     case MRQP_FW_MIT_KIND_ENABLE: {
       ServoCommand s;
       s.enabled = true;  // no gains, no torque until the first command
-      set_servo(s, now);
+      setServo(s, now);
       break;
     }
     case MRQP_FW_MIT_KIND_DISABLE:
-      set_servo(ServoCommand{}, now);
+      setServo(ServoCommand{}, now);
       break;
     case MRQP_FW_MIT_KIND_ZERO:
       zero_ = host_.measure(options_.joint, now).position;
@@ -59,7 +59,7 @@ bool EmulatedMitMotor::on_frame(const mrqp_fw_frame& f, TimeNs now) noexcept {
         s.kp = static_cast<double>(c.kp);
         s.kd = static_cast<double>(c.kd);
         s.enabled = true;
-        set_servo(s, now);
+        setServo(s, now);
       }
       break;
     }

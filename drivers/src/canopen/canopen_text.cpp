@@ -1,5 +1,5 @@
 // mrqp drivers -- CANopen master, faults in words (see canopen/canopen_text.hpp). Setup side:
-// nmt_state_str() aside, everything here allocates.
+// nmtStateStr() aside, everything here allocates.
 #include "mrqp/drivers/canopen/canopen_text.hpp"
 
 #include <cstdio>
@@ -10,7 +10,7 @@
 
 namespace mrqp::drivers {
 
-const char* nmt_state_str(std::uint8_t state) noexcept {
+const char* nmtStateStr(std::uint8_t state) noexcept {
   switch (state) {
     case MRQP_FW_NMT_STATE_BOOTUP:
       return "boot-up";
@@ -27,8 +27,8 @@ const char* nmt_state_str(std::uint8_t state) noexcept {
   }
 }
 
-std::string describe_sdo_abort(std::uint32_t code, std::uint16_t index, std::uint8_t subindex,
-                               std::uint8_t node, const char* what) {
+std::string describeSdoAbort(std::uint32_t code, std::uint16_t index, std::uint8_t subindex,
+                             std::uint8_t node, const char* what) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "SDO abort 0x%08X (", static_cast<unsigned>(code));
   std::string out = buf;
@@ -39,7 +39,7 @@ std::string describe_sdo_abort(std::uint32_t code, std::uint16_t index, std::uin
   return out;
 }
 
-std::string describe_emcy(std::uint16_t code, std::uint8_t error_register, std::uint8_t node) {
+std::string describeEmcy(std::uint16_t code, std::uint8_t error_register, std::uint8_t node) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "EMCY 0x%04X (", static_cast<unsigned>(code));
   std::string out = buf;
@@ -50,8 +50,8 @@ std::string describe_emcy(std::uint16_t code, std::uint8_t error_register, std::
   return out;
 }
 
-std::string describe_check_mismatch(std::uint16_t index, std::uint8_t subindex, std::uint8_t node,
-                                    std::uint32_t expected, std::uint32_t actual, std::uint32_t mask) {
+std::string describeCheckMismatch(std::uint16_t index, std::uint8_t subindex, std::uint8_t node,
+                                  std::uint32_t expected, std::uint32_t actual, std::uint32_t mask) {
   char buf[160];
   std::snprintf(buf, sizeof buf,
                 "0x%04X:%02X of node %u is 0x%08X, the configuration expects 0x%08X (mask 0x%08X)",

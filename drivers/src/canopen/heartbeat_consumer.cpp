@@ -11,7 +11,7 @@ void HeartbeatConsumer::init(bool produces, TimeNs timeout) noexcept {
   last_ = 0;
 }
 
-void HeartbeatConsumer::on_heartbeat(mrqp_fw_nmt_state state, TimeNs t) noexcept {
+void HeartbeatConsumer::onHeartbeat(mrqp_fw_nmt_state state, TimeNs t) noexcept {
   state_ = static_cast<std::uint8_t>(state);
   last_ = t;
   monitoring_ = produces_;

@@ -6,7 +6,7 @@
 namespace mrqp::drivers {
 
 namespace {
-mrqp_fw_nmt_cmd boot_command(NmtReset reset) noexcept {
+mrqp_fw_nmt_cmd bootCommand(NmtReset reset) noexcept {
   return reset == NmtReset::Node            ? MRQP_FW_NMT_RESET_NODE
          : reset == NmtReset::Communication ? MRQP_FW_NMT_RESET_COMM
                                             : MRQP_FW_NMT_ENTER_PREOP;
@@ -29,10 +29,10 @@ void NmtBoot::begin(TimeNs now, mrqp_fw_frame* out) noexcept {
   sent_ = false;
   echoed_ = false;
   commanded_ = now;
-  (void)mrqp_fw_nmt_pack(boot_command(reset_), node_, out);
+  (void)mrqp_fw_nmt_pack(bootCommand(reset_), node_, out);
 }
 
-void NmtBoot::start_remote(TimeNs now, mrqp_fw_frame* out) noexcept {
+void NmtBoot::startRemote(TimeNs now, mrqp_fw_frame* out) noexcept {
   commanded_ = now;
   (void)mrqp_fw_nmt_pack(MRQP_FW_NMT_START, node_, out);
 }
@@ -44,10 +44,10 @@ void NmtBoot::sent(TimeNs now) noexcept {
   }
 }
 
-bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept {
+bool NmtBoot::onOwnCommand(const mrqp_fw_frame& f) noexcept {
   mrqp_fw_nmt_cmd cmd;
   std::uint8_t target = 0;
-  if (!waiting() || mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || cmd != boot_command(reset_) ||
+  if (!waiting() || mrqp_fw_nmt_unpack(&f, &cmd, &target) != MRQP_FW_OK || cmd != bootCommand(reset_) ||
       (target != node_ && target != 0u)) {
     return false;
   }
@@ -55,7 +55,7 @@ bool NmtBoot::on_own_command(const mrqp_fw_frame& f) noexcept {
   return true;
 }
 
-bool NmtBoot::on_boot_up(TimeNs t) noexcept {
+bool NmtBoot::onBootUp(TimeNs t) noexcept {
   if (!waiting()) {
     return false;
   }

@@ -48,7 +48,7 @@ SdoWriteSequence::Step SdoWriteSequence::process(TimeNs now, bool start, mrqp_fw
   return Step::Send;
 }
 
-SdoWriteSequence::Step SdoWriteSequence::on_frame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept {
+SdoWriteSequence::Step SdoWriteSequence::onFrame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept {
   if (!busy_) {
     return Step::Unexpected;
   }

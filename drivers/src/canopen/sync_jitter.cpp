@@ -12,7 +12,7 @@ void SyncJitter::init(TimeNs period, double timeout_factor) noexcept {
   last_ = 0;
 }
 
-void SyncJitter::on_sync(TimeNs t) noexcept {
+void SyncJitter::onSync(TimeNs t) noexcept {
   ++stats_.syncs;
   if (have_last_) {
     const TimeNs interval = t - last_;

@@ -32,26 +32,26 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener,
  public:
   FakeCia402Drive(SimNode& node, const FakeDriveOptions& options);
 
-  void on_receive(SimNode& node, mrqp::drivers::ReceiveResult kind, const RxFrame& rx) noexcept override;
-  void on_transmitted(SimNode& node, const mrqp_fw_frame& frame, TimeNs end) noexcept override;
-  void on_timer(SimNode& node, TimeNs now) noexcept override;
+  void onReceive(SimNode& node, mrqp::drivers::ReceiveResult kind, const RxFrame& rx) noexcept override;
+  void onTransmitted(SimNode& node, const mrqp_fw_frame& frame, TimeNs end) noexcept override;
+  void onTimer(SimNode& node, TimeNs now) noexcept override;
 
   // ---- test controls ----
   /// Power off (disconnects the node: no frames, no ACK) / on (boots again).
   void power(bool on) noexcept;
   /// A fault: EMCY with `code`, then Fault reaction active -> Fault at the next SYNC.
-  void inject_fault(std::uint16_t code, std::uint8_t error_register) noexcept;
+  void injectFault(std::uint16_t code, std::uint8_t error_register) noexcept;
   /// Stop sending TPDOs (heartbeat continues).
-  void set_pdo_silent(bool silent) noexcept { drive_.set_pdo_silent(silent); }
+  void setPdoSilent(bool silent) noexcept { drive_.setPdoSilent(silent); }
   /// No frame at all / the next n TPDOs one byte short (the emulated drive's fault switches).
-  void set_silent(bool silent) noexcept { drive_.set_silent(silent); }
-  void corrupt_pdos(unsigned n) noexcept { drive_.corrupt_pdos(n); }
+  void setSilent(bool silent) noexcept { drive_.setSilent(silent); }
+  void corruptPdos(unsigned n) noexcept { drive_.corruptPdos(n); }
   /// Answer SDO writes to index:sub with an abort.
-  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
-    drive_.abort_on_write(index, sub, code);
+  void abortOnWrite(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept {
+    drive_.abortOnWrite(index, sub, code);
   }
   /// Report this mode in the mode display instead of 0x6060.
-  void force_mode_display(std::int8_t mode) noexcept { drive_.force_mode_display(mode); }
+  void forceModeDisplay(std::int8_t mode) noexcept { drive_.forceModeDisplay(mode); }
 
   // ---- observation ----
   mrqp_fw_nmt_state nmt() const noexcept { return drive_.nmt(); }
@@ -59,23 +59,23 @@ class FakeCia402Drive final : public mrqp::drivers::SimListener,
   bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept {
     return drive_.od(index, sub, value);
   }
-  std::int32_t target_position() const noexcept { return drive_.target_position(); }
-  std::int16_t target_torque() const noexcept { return drive_.target_torque(); }
+  std::int32_t targetPosition() const noexcept { return drive_.targetPosition(); }
+  std::int16_t targetTorque() const noexcept { return drive_.targetTorque(); }
   std::int32_t position() const noexcept { return position_; }
-  std::uint16_t last_controlword() const noexcept { return drive_.last_controlword(); }
-  unsigned sdo_writes() const noexcept { return drive_.sdo_writes(); }
+  std::uint16_t lastControlword() const noexcept { return drive_.lastControlword(); }
+  unsigned sdoWrites() const noexcept { return drive_.sdoWrites(); }
   unsigned syncs() const noexcept { return drive_.syncs(); }
-  bool tpdo1_configured() const noexcept { return drive_.tpdo1_configured(); }
-  bool tpdo2_configured() const noexcept { return drive_.tpdo2_configured(); }
-  bool rpdo1_configured() const noexcept { return drive_.rpdo1_configured(); }
-  unsigned comm_errors() const noexcept { return drive_.comm_errors(); }
-  bool comm_error_active() const noexcept { return drive_.comm_error_active(); }
+  bool tpdo1Configured() const noexcept { return drive_.tpdo1Configured(); }
+  bool tpdo2Configured() const noexcept { return drive_.tpdo2Configured(); }
+  bool rpdo1Configured() const noexcept { return drive_.rpdo1Configured(); }
+  unsigned commErrors() const noexcept { return drive_.commErrors(); }
+  bool commErrorActive() const noexcept { return drive_.commErrorActive(); }
 
  private:
   using Drive = mrqp::emulation::EmulatedCia402Drive;
   void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept override;
-  void on_nmt_reset(bool application) noexcept override;
-  Drive::Feedback on_sync(const Drive& drive, bool new_targets, TimeNs now) noexcept override;
+  void onNmtReset(bool application) noexcept override;
+  Drive::Feedback onSync(const Drive& drive, bool new_targets, TimeNs now) noexcept override;
   void rearm() noexcept;
 
   SimNode& node_;

@@ -21,14 +21,14 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
   static constexpr std::size_t kMax = 32;
 
   FakeMitMotors(SimNode& node, TimeNs response_delay = 30000) : node_(node), delay_(response_delay) {
-    node_.set_listener(this);
+    node_.setListener(this);
   }
   /// Adds a motor with `id` (ranges: the defaults).
   void add(std::uint8_t id) noexcept {
     motors_[count_].id = id;
     ++count_;
   }
-  void set_silent(std::uint8_t id, bool silent) noexcept {
+  void setSilent(std::uint8_t id, bool silent) noexcept {
     if (Motor* m = find(id)) {
       m->silent = silent;
     }
@@ -57,13 +57,13 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     }
     return 0;
   }
-  void set_position(std::uint8_t id, float p) noexcept {
+  void setPosition(std::uint8_t id, float p) noexcept {
     if (Motor* m = find(id)) {
       m->p = p;
     }
   }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
+  void onReceive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame) {
       return;
     }
@@ -107,7 +107,7 @@ class FakeMitMotors final : public mrqp::drivers::SimListener {
     mrqp_fw_mit_reply r{m->id, m->p, m->v, m->t};
     mrqp_fw_frame f;
     if (!mrqp_fw_pack_failed(mrqp_fw_mit_pack_reply(&ranges_, &r, &f))) {
-      (void)node_.send_at(f, rx.timestamp + delay_);
+      (void)node_.sendAt(f, rx.timestamp + delay_);
     }
   }
 
@@ -142,19 +142,19 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
  public:
   FakeHandBoard(SimNode& node, unsigned board, unsigned joints, TimeNs response_delay = 20000)
       : node_(node), board_(board), joints_(joints), delay_(response_delay) {
-    node_.set_listener(this);
+    node_.setListener(this);
   }
-  void set_silent(bool s) noexcept { silent_ = s; }
-  void set_status_extra(std::uint8_t bits) noexcept { extra_status_ = bits; }
+  void setSilent(bool s) noexcept { silent_ = s; }
+  void setStatusExtra(std::uint8_t bits) noexcept { extra_status_ = bits; }
   /// Skip the counter by `n` before the next feedback frame (lost frames).
-  void skip_counter(std::uint8_t n) noexcept { counter_ = static_cast<std::uint8_t>(counter_ + n); }
+  void skipCounter(std::uint8_t n) noexcept { counter_ = static_cast<std::uint8_t>(counter_ + n); }
   /// Do not apply commands (the echo stops moving).
-  void set_frozen(bool f) noexcept { frozen_ = f; }
+  void setFrozen(bool f) noexcept { frozen_ = f; }
   std::uint8_t mode() const noexcept { return mode_; }
   float position(unsigned j) const noexcept { return joints_state_[j].position; }
   unsigned commands() const noexcept { return commands_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
+  void onReceive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame || rx.frame.id != MRQP_FW_HAND_FD_CMD_ID_BASE + board_) {
       return;
     }
@@ -194,7 +194,7 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
     }
     mrqp_fw_frame f;
     if (!mrqp_fw_pack_failed(mrqp_fw_hand_pack_fb(&scale_, board_, &fb, &f, nullptr))) {
-      (void)node_.send_at(f, rx.timestamp + delay_);
+      (void)node_.sendAt(f, rx.timestamp + delay_);
     }
   }
 
@@ -220,20 +220,20 @@ class FakeFtSensor final : public mrqp::drivers::SimListener {
  public:
   FakeFtSensor(SimNode& node, unsigned node_id, bool fd, TimeNs response_delay = 15000)
       : node_(node), id_(node_id), fd_(fd), delay_(response_delay) {
-    node_.set_listener(this);
+    node_.setListener(this);
     scale_ = fd ? mrqp_fw_ft_scale MRQP_FW_FT_SCALE_FD_DEFAULT_INIT
                 : mrqp_fw_ft_scale MRQP_FW_FT_SCALE_CLASSIC_DEFAULT_INIT;
   }
-  void set_wrench(const std::array<double, 6>& w) noexcept { wrench_ = w; }
-  void set_silent(bool s) noexcept { silent_ = s; }
+  void setWrench(const std::array<double, 6>& w) noexcept { wrench_ = w; }
+  void setSilent(bool s) noexcept { silent_ = s; }
   /// Send only the forces half of the next `n` samples.
-  void drop_moments(unsigned n) noexcept { drop_moments_ = n; }
-  void skip_seq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
-  void set_status_extra(std::uint8_t bits) noexcept { extra_status_ = bits; }
+  void dropMoments(unsigned n) noexcept { drop_moments_ = n; }
+  void skipSeq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
+  void setStatusExtra(std::uint8_t bits) noexcept { extra_status_ = bits; }
   bool tared() const noexcept { return tared_; }
   unsigned syncs() const noexcept { return syncs_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
+  void onReceive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame) {
       return;
     }
@@ -264,18 +264,18 @@ class FakeFtSensor final : public mrqp::drivers::SimListener {
     if (fd_) {
       mrqp_fw_frame out;
       if (!mrqp_fw_pack_failed(mrqp_fw_ft_pack_fd(&scale_, id_, &s, &out))) {
-        (void)node_.send_at(out, rx.timestamp + delay_);
+        (void)node_.sendAt(out, rx.timestamp + delay_);
       }
       return;
     }
     mrqp_fw_frame forces;
     mrqp_fw_frame moments;
     if (!mrqp_fw_pack_failed(mrqp_fw_ft_pack_classic(&scale_, id_, &s, &forces, &moments))) {
-      (void)node_.send_at(forces, rx.timestamp + delay_);
+      (void)node_.sendAt(forces, rx.timestamp + delay_);
       if (drop_moments_ > 0) {
         --drop_moments_;
       } else {
-        (void)node_.send_at(moments, rx.timestamp + delay_);
+        (void)node_.sendAt(moments, rx.timestamp + delay_);
       }
     }
   }
@@ -301,15 +301,15 @@ class FakeImu final : public mrqp::drivers::SimListener {
  public:
   FakeImu(SimNode& node, unsigned node_id, TimeNs response_delay = 15000)
       : node_(node), id_(node_id), delay_(response_delay) {
-    node_.set_listener(this);
+    node_.setListener(this);
     sample_.orientation[0] = 1.0;
   }
   mrqp_fw_imu_sample& sample() noexcept { return sample_; }
-  void set_silent(bool s) noexcept { silent_ = s; }
-  void skip_seq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
+  void setSilent(bool s) noexcept { silent_ = s; }
+  void skipSeq(std::uint8_t n) noexcept { seq_ = static_cast<std::uint8_t>(seq_ + n); }
   unsigned syncs() const noexcept { return syncs_; }
 
-  void on_receive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
+  void onReceive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
     if (kind != ReceiveResult::Frame || rx.frame.id != MRQP_FW_COB_SYNC || silent_) {
       return;
     }
@@ -318,7 +318,7 @@ class FakeImu final : public mrqp::drivers::SimListener {
     s.seq = ++seq_;
     mrqp_fw_frame out;
     if (!mrqp_fw_pack_failed(mrqp_fw_imu_pack(&scale_, id_, &s, &out))) {
-      (void)node_.send_at(out, rx.timestamp + delay_);
+      (void)node_.sendAt(out, rx.timestamp + delay_);
     }
   }
 

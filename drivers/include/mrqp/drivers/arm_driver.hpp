@@ -23,31 +23,31 @@
 //                             position, target torque) and then one SYNC. TPDO1 (statusword,
 //                             position, torque) and TPDO2 (velocity, error code, mode display)
 //                             are decoded when they arrive.
-//   request_enable() / request_disable() / request_quick_stop(): the controlword of each drive
+//   requestEnable() / requestDisable() / requestQuickStop(): the controlword of each drive
 //   follows mrqp_fw_cia402_master_controlword (firmware_if), one transition per cycle, until the
 //   target state is reported by the statusword. A drive that falls into Fault is flagged and
-//   left there (target Switch on disabled) until the next request_enable(), which resets it.
+//   left there (target Switch on disabled) until the next requestEnable(), which resets it.
 //
 // Recovery (see docs/drivers.md, "Bringing up a vendor's drive"): a drive that leaves
 // Operational (its heartbeat reports pre-operational or stopped), reboots (boot-up message) or
 // falls into Fault while enabled is flagged (kStateMismatch with the NMT state, kEmcy with the
 // code) and needs recovery: reconfigure if it rebooted, NMT start, CiA 402 enable (fault reset).
-// request_recovery(now) starts it for every drive that needs it; with ArmConfig::recovery =
-// Automatic the driver starts it by itself. Neither happens while set_safe_state(true) is in force:
+// requestRecovery(now) starts it for every drive that needs it; with ArmConfig::recovery =
+// Automatic the driver starts it by itself. Neither happens while setSafeState(true) is in force:
 // the loop sets it while its safe state holds, and the driver then recovers nothing.
 //
-// Safe exit: request_safe_exit(now) stops every drive (quick stop, or disable voltage, as
+// Safe exit: requestSafeExit(now) stops every drive (quick stop, or disable voltage, as
 // ArmConfig::exit_stop), waits until each reports it (or exit_timeout), then sends NMT enter
-// pre-operational or stop (exit_nmt) to each drive; safe_exit_done() then holds (phase Stopped,
+// pre-operational or stop (exit_nmt) to each drive; safeExitDone() then holds (phase Stopped,
 // no cyclic traffic). Works from any phase (a failed boot goes straight to the NMT command). A
 // drive that is not Operational (PDOs stopped) and was last seen with its power stage on gets the
 // controlword 0x0000 (disable voltage) by an SDO write to 0x6040 before its NMT command.
 //
 // SYNC jitter: the interval between successive SYNCs of each bus, timed on the TX echo where the
-// bus returns the master's own frames (else at transmit()), against the cycle period: sync_stats().
+// bus returns the master's own frames (else at transmit()), against the cycle period: syncStats().
 //
 // The control cycle calls, in order: BusRouter::poll(now) for each bus, update(now) (faults and
-// state machine), set_position()/set_torque(), transmit(now).
+// state machine), setPosition()/setTorque(), transmit(now).
 // The CANopen master's protocol objects are units of their own (drivers/canopen, one per file):
 // NmtBoot (reset and boot-up wait, NMT start) and HeartbeatConsumer per drive, SdoWriteSequence
 // (the configuration writes) per drive, SyncProducer per bus, HeartbeatProducer (the master's
@@ -57,8 +57,8 @@
 // (raw increments) with zero torque.
 //
 // As a JointDevice (device.hpp) joint i is drive i: a CSP drive is JointMode::Position
-// (set_joint: target position, and the command's torque as the RPDO's torque feed-forward; the
-// RPDO has no velocity), a CST drive JointMode::Torque (set_joint: target torque).
+// (setJoint: target position, and the command's torque as the RPDO's torque feed-forward; the
+// RPDO has no velocity), a CST drive JointMode::Torque (setJoint: target torque).
 #pragma once
 
 #include <array>
@@ -107,11 +107,11 @@ struct ArmDriveConfig {
   std::uint32_t revision = 0;
 };
 
-/// Who starts a recovery (see ArmDriver): the caller (request_recovery) or the driver itself.
+/// Who starts a recovery (see ArmDriver): the caller (requestRecovery) or the driver itself.
 enum class RecoveryPolicy : std::uint8_t { Manual = 0, Automatic };
-/// How request_safe_exit() stops the power stage.
+/// How requestSafeExit() stops the power stage.
 enum class ExitStop : std::uint8_t { QuickStop = 0, DisableVoltage };
-/// The NMT state request_safe_exit() leaves the drives in.
+/// The NMT state requestSafeExit() leaves the drives in.
 enum class ExitNmt : std::uint8_t { PreOperational = 0, Stopped, Unchanged };
 
 struct ArmConfig {
@@ -129,9 +129,9 @@ struct ArmConfig {
   bool write_cycle_period = true;         ///< write 0x1006 (microseconds)
   /// The value written to 0x1006 in microseconds; 0: the cycle period. A drive that enforces a SYNC
   /// timeout takes a multiple of it (1.5 x is common): a loop with SYNC gaps beyond that needs a
-  /// larger value, or the drive leaves Operational (see sync_stats()).
+  /// larger value, or the drive leaves Operational (see syncStats()).
   std::uint32_t comm_cycle_period_us = 0;
-  /// The SYNC timeout factor of the drives, for sync_stats().over_timeout (gaps a drive would take
+  /// The SYNC timeout factor of the drives, for syncStats().over_timeout (gaps a drive would take
   /// for a lost SYNC).
   double sync_timeout_factor = 1.5;
   /// TPDO COB-IDs with bit 30 = 0 ("RTR allowed"); false (default): bit 30 = 1, as many drives require.
@@ -143,7 +143,7 @@ struct ArmConfig {
   TimeNs recovery_retry = seconds(1);  ///< Automatic: at most one recovery start per drive per this
   ExitStop exit_stop = ExitStop::QuickStop;
   ExitNmt exit_nmt = ExitNmt::PreOperational;
-  TimeNs exit_timeout = milliseconds(500);    ///< request_safe_exit: longest wait for the stop
+  TimeNs exit_timeout = milliseconds(500);    ///< requestSafeExit: longest wait for the stop
   std::uint32_t feedback_missing_cycles = 3;  ///< consecutive cycles without TPDO1 -> fault
   TimeNs boot_timeout = seconds(5);           ///< reset -> all boot-up messages
   TimeNs sdo_timeout = milliseconds(100);     ///< per SDO request
@@ -160,7 +160,7 @@ enum class ArmPhase : std::uint8_t {
   Stopping,
   Stopped
 };
-const char* arm_phase_str(ArmPhase phase) noexcept;
+const char* armPhaseStr(ArmPhase phase) noexcept;
 
 /// What the driver knows about one drive, updated by the received frames.
 struct ArmDriveState {
@@ -196,59 +196,59 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   /// Running, every drive reports Operation enabled, and none needs or is in a recovery.
   bool ready() const noexcept override;
   /// Moves every drive to Operation enabled (resetting faults).
-  void request_enable(TimeNs now) noexcept override;
+  void requestEnable(TimeNs now) noexcept override;
   /// Moves every drive to Switch on disabled.
-  void request_disable(TimeNs now) noexcept override;
+  void requestDisable(TimeNs now) noexcept override;
   /// Quick stop: Operation enabled -> Quick stop active (others to Switch on disabled).
-  void request_quick_stop(TimeNs now) noexcept override;
+  void requestQuickStop(TimeNs now) noexcept override;
 
   /// After polling the buses: timeouts, state machines, fault flags of this cycle.
   const FaultReport& update(TimeNs now) noexcept override;
   /// Setpoints for the next transmit(): target position (CSP) / target torque (CST).
-  SetpointResult set_position(std::size_t drive, double rad) noexcept;
-  SetpointResult set_torque(std::size_t drive, double nm) noexcept;
+  SetpointResult setPosition(std::size_t drive, double rad) noexcept;
+  SetpointResult setTorque(std::size_t drive, double nm) noexcept;
   /// Sends this cycle's frames. Returns the number of frames queued.
   std::size_t transmit(TimeNs now) noexcept override;
 
   // JointDevice: joint i is drive i.
-  std::size_t joint_count() const noexcept override { return drives_.size(); }
-  JointMode joint_mode(std::size_t joint) const noexcept override;
-  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  std::size_t jointCount() const noexcept override { return drives_.size(); }
+  JointMode jointMode(std::size_t joint) const noexcept override;
+  SetpointResult setJoint(std::size_t joint, const JointCommand& command) noexcept override;
   JointFeedback joint(std::size_t joint) const noexcept override;
 
-  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
   /// The TX echo of the master's NMT commands (see NmtBoot).
-  void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  void onOwnFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
   ArmPhase phase() const noexcept { return phase_; }
   /// Every drive reports Operation enabled.
-  bool all_enabled() const noexcept;
+  bool allEnabled() const noexcept;
   /// Every drive reports Switch on disabled (or Not ready to switch on).
-  bool all_disabled() const noexcept;
-  std::size_t drive_count() const noexcept { return drives_.size(); }
+  bool allDisabled() const noexcept;
+  std::size_t driveCount() const noexcept { return drives_.size(); }
   const ArmDriveState& drive(std::size_t i) const noexcept { return drives_[i].state; }
   const FaultReport& faults() const noexcept override { return routers_.report(); }
   /// Adds this driver's cyclic traffic on bus `bus` (index as given to create) to a budget.
-  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
+  void declareTraffic(std::size_t bus, BusBudget& budget) const override;
 
   /// Starts the recovery of every drive that needs it (see the top of this file). Returns the
   /// number of drives whose recovery started; 0 while the safe state is in force or not Running.
-  std::size_t request_recovery(TimeNs now) noexcept;
+  std::size_t requestRecovery(TimeNs now) noexcept;
   /// The loop's safe state: while true no recovery starts (manual or automatic), and recoveries
   /// under way stop before enabling the drive.
-  void set_safe_state(bool in_force) noexcept { safe_state_ = in_force; }
-  bool safe_state() const noexcept { return safe_state_; }
+  void setSafeState(bool in_force) noexcept { safe_state_ = in_force; }
+  bool safeState() const noexcept { return safe_state_; }
   /// The drive needs a recovery (left Operational, rebooted, or fell into Fault while enabled).
-  bool needs_recovery(std::size_t drive) const noexcept;
+  bool needsRecovery(std::size_t drive) const noexcept;
   /// A recovery of the drive is under way.
   bool recovering(std::size_t drive) const noexcept;
 
   /// Stops every drive and leaves it in the configured NMT state (see the top of this file).
-  void request_safe_exit(TimeNs now) noexcept;
-  bool safe_exit_done() const noexcept { return phase_ == ArmPhase::Stopped; }
+  void requestSafeExit(TimeNs now) noexcept;
+  bool safeExitDone() const noexcept { return phase_ == ArmPhase::Stopped; }
 
   /// SYNC intervals and jitter of bus `bus` (index as given to create).
-  const SyncStats& sync_stats(std::size_t bus) const noexcept { return buses_[bus].jitter.stats(); }
+  const SyncStats& syncStats(std::size_t bus) const noexcept { return buses_[bus].jitter.stats(); }
 
  private:
   struct Drive {
@@ -293,23 +293,23 @@ class ArmDriver final : public JointDevice, public FrameHandler {
   };
 
   ArmDriver() = default;
-  std::vector<SdoWrite> build_writes(const ArmDriveConfig& drive) const;
+  std::vector<SdoWrite> buildWrites(const ArmDriveConfig& drive) const;
   bool send(std::size_t slot, Drive* d, const mrqp_fw_frame& f) noexcept;
-  void set_pending(Drive& d, const mrqp_fw_frame& f) noexcept;
-  void fail_boot(Drive& d, std::uint32_t flags) noexcept;
+  void setPending(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void failBoot(Drive& d, std::uint32_t flags) noexcept;
   /// After one step of a drive's SDO write sequence (boot or recovery): a failed step keeps the
   /// frame it could not send, records the abort and its object, fails the boot; true then.
-  bool failed_sdo_step(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept;
-  void set_target(mrqp_fw_cia402_state target, TimeNs now) noexcept;
-  Claim on_sdo(Drive& d, const mrqp_fw_frame& f) noexcept;
-  void decode_tpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept;
-  void decode_tpdo2(Drive& d, const mrqp_fw_frame& f) noexcept;
-  void start_recovery(Drive& d, TimeNs now) noexcept;
-  void step_recovery(Drive& d, TimeNs now) noexcept;
-  void transmit_recovery(Drive& d, std::size_t* count, TimeNs now) noexcept;
-  void step_safe_exit(TimeNs now) noexcept;
-  void queue_exit_nmt(Drive& d) noexcept;
-  std::size_t transmit_cyclic(TimeNs now) noexcept;
+  bool failedSdoStep(Drive& d, SdoWriteSequence::Step step, const mrqp_fw_frame& out) noexcept;
+  void setTarget(mrqp_fw_cia402_state target, TimeNs now) noexcept;
+  Claim onSdo(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void decodeTpdo1(Drive& d, const mrqp_fw_frame& f, TimeNs t) noexcept;
+  void decodeTpdo2(Drive& d, const mrqp_fw_frame& f) noexcept;
+  void startRecovery(Drive& d, TimeNs now) noexcept;
+  void stepRecovery(Drive& d, TimeNs now) noexcept;
+  void transmitRecovery(Drive& d, std::size_t* count, TimeNs now) noexcept;
+  void stepSafeExit(TimeNs now) noexcept;
+  void queueExitNmt(Drive& d) noexcept;
+  std::size_t transmitCyclic(TimeNs now) noexcept;
 
   ArmConfig config_;
   std::vector<Drive> drives_;

@@ -1,6 +1,6 @@
 // mrqp drivers -- how many buses a robot needs: bus plans and the markdown table of docs/drivers.md.
 //
-// plan_buses() places a robot's devices on buses of one kind at one cycle rate, first fit, each
+// planBuses() places a robot's devices on buses of one kind at one cycle rate, first fit, each
 // bus within the utilisation limit (worst-case stuffing): arm drives and force/torque sensors on
 // CANopen "arm" buses (one SYNC per bus, drive heartbeats averaged), hand actuators on their own
 // "hand" buses (MIT motors on a classic bus: their replies use identifier 0x000, the NMT
@@ -50,13 +50,13 @@ struct BusPlan {
   double fullest = 0.0;                  ///< largest worst-case utilisation
 };
 
-BusPlan plan_buses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit);
+BusPlan planBuses(const RobotTraffic& robot, const BusKind& kind, double cycle_hz, double limit);
 
 /// The table of docs/drivers.md: one row per (rate, bus kind).
-std::string budget_table_markdown(const RobotTraffic& robot, const std::vector<BusKind>& kinds,
-                                  const std::vector<double>& rates_hz, double limit);
+std::string budgetTableMarkdown(const RobotTraffic& robot, const std::vector<BusKind>& kinds,
+                                const std::vector<double>& rates_hz, double limit);
 /// The project's reference table: 7 arm drives + 20 hand joints + 2 F/T sensors at 250, 500 and
 /// 1000 Hz on classic 1 Mbit/s and CAN FD 1/5 Mbit/s, 80 % limit, with and without TPDO2.
-std::string reference_budget_tables();
+std::string referenceBudgetTables();
 
 }  // namespace mrqp::drivers

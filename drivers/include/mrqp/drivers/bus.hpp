@@ -20,7 +20,7 @@ namespace mrqp::drivers {
 /// < 96), warning (a counter >= 96), error passive (a counter >= 128), bus-off (TEC > 255).
 enum class BusState : std::uint8_t { ErrorActive = 0, ErrorWarning, ErrorPassive, BusOff };
 
-const char* bus_state_str(BusState state) noexcept;
+const char* busStateStr(BusState state) noexcept;
 
 /// Flags of a bus error event (SocketCAN error frame, or a SimBus error notification).
 namespace bus_error {
@@ -104,13 +104,13 @@ class Bus {
   /// Controller state and counters.
   virtual BusStatus status() const noexcept = 0;
   /// True if CAN FD frames can be sent and received.
-  virtual bool fd_enabled() const noexcept = 0;
+  virtual bool fdEnabled() const noexcept = 0;
   /// A static name for messages (interface or node name).
   virtual const char* name() const noexcept = 0;
   /// True if receive() also returns this bus's own frames once they were on the wire (RxFrame::own:
   /// CAN_RAW_RECV_OWN_MSGS on SocketCAN, SimNodeConfig::echo_own on SimBus), in wire order with
   /// the frames of the other nodes.
-  virtual bool echoes_own() const noexcept { return false; }
+  virtual bool echoesOwn() const noexcept { return false; }
 };
 
 }  // namespace mrqp::drivers

@@ -31,7 +31,7 @@ struct BusSpec {
 };
 
 /// "classic 1 Mbit/s" or "CAN FD 1/5 Mbit/s".
-std::string bus_spec_label(const BusSpec& spec);
+std::string busSpecLabel(const BusSpec& spec);
 
 struct BudgetLine {
   std::string label;
@@ -68,20 +68,20 @@ class BusBudget {
   explicit BusBudget(BusSpec spec);
 
   /// `count` frames of `len` bytes every cycle.
-  void add_cyclic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format);
+  void addCyclic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format);
   /// `count` frames of `len` bytes every `period_s` seconds (heartbeats...), averaged per cycle.
-  void add_periodic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format,
-                    double period_s);
+  void addPeriodic(const std::string& label, std::uint32_t count, unsigned len, FrameFormat format,
+                   double period_s);
 
   // The traffic of this project's devices (docs/protocol.md), per control cycle:
-  void add_sync();                                        ///< SYNC, 0 bytes
-  void add_arm_drives(std::uint32_t n, bool tpdo2);       ///< RPDO1 8 + TPDO1 8 (+ TPDO2 7) each
-  void add_heartbeats(std::uint32_t n, double period_s);  ///< 1-byte heartbeats every period_s
-  void add_mit_motors(std::uint32_t n);                   ///< command 8 + reply 6 each
-  void add_hand_board(std::uint32_t joints);              ///< FD command + feedback frames (BRS)
-  void add_ft_classic(std::uint32_t n);                   ///< forces 8 + moments 8 each
-  void add_ft_fd(std::uint32_t n);                        ///< one 32-byte FD frame (BRS) each
-  void add_imu_fd(std::uint32_t n);                       ///< one 24-byte FD frame (BRS) each
+  void addSync();                                        ///< SYNC, 0 bytes
+  void addArmDrives(std::uint32_t n, bool tpdo2);        ///< RPDO1 8 + TPDO1 8 (+ TPDO2 7) each
+  void addHeartbeats(std::uint32_t n, double period_s);  ///< 1-byte heartbeats every period_s
+  void addMitMotors(std::uint32_t n);                    ///< command 8 + reply 6 each
+  void addHandBoard(std::uint32_t joints);               ///< FD command + feedback frames (BRS)
+  void addFtClassic(std::uint32_t n);                    ///< forces 8 + moments 8 each
+  void addFtFd(std::uint32_t n);                         ///< one 32-byte FD frame (BRS) each
+  void addImuFd(std::uint32_t n);                        ///< one 24-byte FD frame (BRS) each
 
   const BusSpec& spec() const noexcept { return spec_; }
   const std::vector<BudgetLine>& lines() const noexcept { return lines_; }

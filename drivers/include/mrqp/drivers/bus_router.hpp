@@ -29,10 +29,10 @@ enum class Claim : std::uint8_t {
 class FrameHandler {
  public:
   /// Called from BusRouter::poll for every data frame until a handler claims it.
-  virtual Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept = 0;
+  virtual Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept = 0;
   /// Called from BusRouter::poll for each of the bus's own frames it returns (TX echo, see
-  /// Bus::echoes_own()), for every handler; never passed to on_frame, never counted as unknown.
-  virtual void on_own_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
+  /// Bus::echoesOwn()), for every handler; never passed to onFrame, never counted as unknown.
+  virtual void onOwnFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept {
     (void)from;
     (void)rx;
     (void)now;
@@ -47,7 +47,7 @@ struct RouterStats {
   std::uint64_t accepted = 0;
   std::uint64_t rejected = 0;  ///< claimed but malformed (corrupted), dropped
   std::uint64_t unknown = 0;   ///< claimed by nobody, dropped
-  std::uint64_t echoes = 0;    ///< own frames returned by the bus (TX echo), given to on_own_frame
+  std::uint64_t echoes = 0;    ///< own frames returned by the bus (TX echo), given to onOwnFrame
   std::uint64_t error_events = 0;
   std::uint64_t receive_failures = 0;
   std::uint64_t polls_truncated = 0;   ///< polls that stopped at max_frames_per_poll
@@ -62,9 +62,9 @@ class BusRouter {
   BusRouter& operator=(const BusRouter&) = delete;
 
   /// Registers a handler (setup). False when the table is full or it is already registered.
-  bool add_handler(FrameHandler& handler) noexcept;
+  bool addHandler(FrameHandler& handler) noexcept;
   /// Removes a handler (drivers do it in their destructor).
-  void remove_handler(FrameHandler& handler) noexcept;
+  void removeHandler(FrameHandler& handler) noexcept;
 
   /// Drains the bus (at most max_frames_per_poll items). Returns the number of items read.
   std::size_t poll(TimeNs now) noexcept;

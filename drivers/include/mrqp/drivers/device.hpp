@@ -7,7 +7,7 @@
 // the F/T sensors, ImuDevice the IMUs. The loop (control/loop) maps a robot's joint and frame
 // names onto (device, index) once at set-up and then only calls these.
 //
-// Everything except declare_traffic() is real-time safe: noexcept, no allocation, no lock.
+// Everything except declareTraffic() is real-time safe: noexcept, no allocation, no lock.
 #pragma once
 
 #include <array>
@@ -74,11 +74,11 @@ class Device {
   /// Booted and, for actuators, every joint enabled: setpoints are being applied.
   virtual bool ready() const noexcept = 0;
   /// Actuators: power every joint (resetting faults). Sensors: nothing.
-  virtual void request_enable(TimeNs now) noexcept { (void)now; }
+  virtual void requestEnable(TimeNs now) noexcept { (void)now; }
   /// Actuators: remove power. Sensors: nothing.
-  virtual void request_disable(TimeNs now) noexcept { (void)now; }
+  virtual void requestDisable(TimeNs now) noexcept { (void)now; }
   /// The device's own safe stop (CiA 402 quick stop; an impedance motor holds with damping only).
-  virtual void request_quick_stop(TimeNs now) noexcept { request_disable(now); }
+  virtual void requestQuickStop(TimeNs now) noexcept { requestDisable(now); }
 
   /// After polling the buses: timeouts, state machines, this cycle's fault flags.
   virtual const FaultReport& update(TimeNs now) noexcept = 0;
@@ -86,7 +86,7 @@ class Device {
   virtual std::size_t transmit(TimeNs now) noexcept = 0;
   virtual const FaultReport& faults() const noexcept = 0;
   /// Adds this device's cyclic traffic on bus `bus` (index as given to create) to a budget.
-  virtual void declare_traffic(std::size_t bus, BusBudget& budget) const = 0;
+  virtual void declareTraffic(std::size_t bus, BusBudget& budget) const = 0;
 
  protected:
   Device() = default;
@@ -96,21 +96,21 @@ class Device {
 
 class JointDevice : public Device {
  public:
-  virtual std::size_t joint_count() const noexcept = 0;
-  virtual JointMode joint_mode(std::size_t joint) const noexcept = 0;
-  virtual SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept = 0;
+  virtual std::size_t jointCount() const noexcept = 0;
+  virtual JointMode jointMode(std::size_t joint) const noexcept = 0;
+  virtual SetpointResult setJoint(std::size_t joint, const JointCommand& command) noexcept = 0;
   virtual JointFeedback joint(std::size_t joint) const noexcept = 0;
 };
 
 class WrenchDevice : public Device {
  public:
-  virtual std::size_t sensor_count() const noexcept = 0;
+  virtual std::size_t sensorCount() const noexcept = 0;
   virtual WrenchFeedback wrench(std::size_t sensor) const noexcept = 0;
 };
 
 class ImuDevice : public Device {
  public:
-  virtual std::size_t imu_count() const noexcept = 0;
+  virtual std::size_t imuCount() const noexcept = 0;
   virtual ImuFeedback imu(std::size_t imu) const noexcept = 0;
 };
 

@@ -3,7 +3,7 @@
 // Plain structs of flags and counters, owned by the driver (capacity fixed at construction) and
 // rewritten by every update(): `flags` say what is wrong THIS cycle (a condition that still
 // holds, or an event that happened since the previous update); counters are cumulative.
-// Nothing here allocates; describe_faults() (for logs, not the cycle) does.
+// Nothing here allocates; describeFaults() (for logs, not the cycle) does.
 #pragma once
 
 #include <cstddef>
@@ -42,7 +42,7 @@ inline constexpr std::uint32_t kLast = kRecovering;
 }  // namespace fault
 
 /// Static name of one flag ("heartbeat lost", ...); "unknown" for other values.
-const char* fault_flag_name(std::uint32_t flag) noexcept;
+const char* faultFlagName(std::uint32_t flag) noexcept;
 
 /// One device (drive, motor, hand board, sensor).
 struct DeviceFaults {
@@ -105,14 +105,14 @@ struct FaultReport {
 
 /// Human-readable summary of the flags raised in a report, one line per device/bus with flags
 /// (for logs; allocates). Empty when the report is ok().
-std::string describe_faults(const FaultReport& report, const char* what = "device");
+std::string describeFaults(const FaultReport& report, const char* what = "device");
 
 /// One device's flags with what they mean (allocates): the node, the EMCY code and its CiA 301 /
 /// CiA 402 meaning, the NMT state of a state mismatch, an SDO abort with its code, meaning, object
 /// and node, a failed identity / device type check with the values expected and read.
-std::string describe_device_faults(const DeviceFaults& device);
+std::string describeDeviceFaults(const DeviceFaults& device);
 
 /// Comma-separated names of the flags in a mask (allocates).
-std::string fault_flags_str(std::uint32_t flags);
+std::string faultFlagsStr(std::uint32_t flags);
 
 }  // namespace mrqp::drivers

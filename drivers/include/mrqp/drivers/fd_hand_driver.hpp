@@ -2,8 +2,8 @@
 //
 // Every cycle each board gets ceil(joints / 11) command frames (identifier 0x120 + board, BRS),
 // all with the same sequence number (incremented every cycle) and the requested mode: DISABLED
-// until request_enable(), then the configured mode (POSITION or TORQUE), DISABLED again after
-// request_disable(). Commands are sent in every mode so the board's command timeout never fires
+// until requestEnable(), then the configured mode (POSITION or TORQUE), DISABLED again after
+// requestDisable(). Commands are sent in every mode so the board's command timeout never fires
 // and its feedback (0x140 + board, one frame per 11 joints) keeps coming. The driver checks each
 // feedback frame (CRC, version, layout: the firmware_if unpack), the feedback counter (a gap is
 // lost frames), the sequence echo (lagging more than max_seq_lag cycles: commands not applied),
@@ -11,13 +11,13 @@
 // enabled, that the board reports the requested mode. Until a joint is given a setpoint after
 // enabling, it is commanded to its measured position with zero velocity and torque.
 //
-// Cycle: BusRouter::poll, update(now), set_joint(), transmit(now). Real-time safe after create().
+// Cycle: BusRouter::poll, update(now), setJoint(), transmit(now). Real-time safe after create().
 //
 // As a JointDevice (device.hpp) the joints of all boards are numbered in configuration order
 // (board 0's joints, then board 1's, ...). The mode is that of enabled_mode: POSITION ->
 // JointMode::Position (position, velocity and feed-forward torque; the board's own gains, the
 // command's stiffness and damping are not on the wire), TORQUE -> JointMode::Torque.
-// request_quick_stop() puts every board into HOLD (the board holds its position; setpoints ignored).
+// requestQuickStop() puts every board into HOLD (the board holds its position; setpoints ignored).
 #pragma once
 
 #include <array>
@@ -81,34 +81,34 @@ class FdHandDriver final : public JointDevice, public FrameHandler {
   const char* kind() const noexcept override { return "fd_hand"; }
   /// Nothing to boot: boards are commanded (DISABLED) from the first transmit().
   void start(TimeNs) noexcept override {}
-  bool ready() const noexcept override { return all_enabled(); }
-  void request_enable(TimeNs now) noexcept override;
-  void request_disable(TimeNs now) noexcept override;
+  bool ready() const noexcept override { return allEnabled(); }
+  void requestEnable(TimeNs now) noexcept override;
+  void requestDisable(TimeNs now) noexcept override;
   /// Every board to HOLD.
-  void request_quick_stop(TimeNs now) noexcept override;
+  void requestQuickStop(TimeNs now) noexcept override;
 
   const FaultReport& update(TimeNs now) noexcept override;
   /// Setpoint of joint `joint` of board `board` (index in the configuration).
-  SetpointResult set_joint(std::size_t board, std::size_t joint, float position, float velocity,
-                           float torque) noexcept;
+  SetpointResult setJoint(std::size_t board, std::size_t joint, float position, float velocity,
+                          float torque) noexcept;
   std::size_t transmit(TimeNs now) noexcept override;
 
   // JointDevice: the joints of all boards in configuration order.
-  std::size_t joint_count() const noexcept override { return joint_count_; }
-  JointMode joint_mode(std::size_t joint) const noexcept override;
-  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  std::size_t jointCount() const noexcept override { return joint_count_; }
+  JointMode jointMode(std::size_t joint) const noexcept override;
+  SetpointResult setJoint(std::size_t joint, const JointCommand& command) noexcept override;
   JointFeedback joint(std::size_t joint) const noexcept override;
 
-  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
-  std::size_t board_count() const noexcept { return boards_.size(); }
+  std::size_t boardCount() const noexcept { return boards_.size(); }
   const HandBoardState& board(std::size_t i) const noexcept { return boards_[i].state; }
   const HandJointState& joint(std::size_t board, std::size_t j) const noexcept {
     return boards_[board].joints[j];
   }
-  bool all_enabled() const noexcept;
+  bool allEnabled() const noexcept;
   const FaultReport& faults() const noexcept override { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
+  void declareTraffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Board {

@@ -12,7 +12,7 @@
 //  - sends tare / clear-tare commands (retried while the queue is full) and confirms them with
 //    the status bit "tared".
 //
-// Cycle: BusRouter::poll, update(now), request_tare(), transmit(now). Real-time safe after create().
+// Cycle: BusRouter::poll, update(now), requestTare(), transmit(now). Real-time safe after create().
 // As a WrenchDevice (device.hpp) sensor i is the configured sensor i; ready() once started and
 // every sensor has delivered a sample.
 #pragma once
@@ -75,20 +75,20 @@ class FtSensorDriver final : public WrenchDevice, public FrameHandler {
   void start(TimeNs now) noexcept override;
   bool ready() const noexcept override;
   /// Tare (true) or clear the tare (false) of sensor i at the next transmit().
-  bool request_tare(std::size_t sensor, bool tare, TimeNs now) noexcept;
+  bool requestTare(std::size_t sensor, bool tare, TimeNs now) noexcept;
 
   const FaultReport& update(TimeNs now) noexcept override;
   std::size_t transmit(TimeNs now) noexcept override;
 
-  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
-  std::size_t sensor_count() const noexcept override { return sensors_.size(); }
+  std::size_t sensorCount() const noexcept override { return sensors_.size(); }
   WrenchFeedback wrench(std::size_t sensor) const noexcept override;
   const FtSensorState& sensor(std::size_t i) const noexcept { return sensors_[i].state; }
   /// True while a tare command has not been confirmed by the status bit.
-  bool tare_pending(std::size_t i) const noexcept { return sensors_[i].tare_wait; }
+  bool tarePending(std::size_t i) const noexcept { return sensors_[i].tare_wait; }
   const FaultReport& faults() const noexcept override { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
+  void declareTraffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Half {
@@ -117,8 +117,8 @@ class FtSensorDriver final : public WrenchDevice, public FrameHandler {
     bool has_sensors = false;
   };
   FtSensorDriver() = default;
-  void publish_sample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept;
-  Claim on_half(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept;
+  void publishSample(Sensor& s, const mrqp_fw_ft_sample& sample, TimeNs t) noexcept;
+  Claim onHalf(Sensor& s, const mrqp_fw_frame& f, TimeNs t) noexcept;
 
   FtConfig config_;
   std::vector<Sensor> sensors_;

@@ -75,13 +75,13 @@ class ImuDriver final : public ImuDevice, public FrameHandler {
   const FaultReport& update(TimeNs now) noexcept override;
   std::size_t transmit(TimeNs now) noexcept override;
   const FaultReport& faults() const noexcept override { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
+  void declareTraffic(std::size_t bus, BusBudget& budget) const override;
 
-  std::size_t imu_count() const noexcept override { return imus_.size(); }
+  std::size_t imuCount() const noexcept override { return imus_.size(); }
   ImuFeedback imu(std::size_t i) const noexcept override;
   const ImuState& state(std::size_t i) const noexcept { return imus_[i].state; }
 
-  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
  private:
   struct Imu {

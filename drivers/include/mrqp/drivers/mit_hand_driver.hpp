@@ -8,13 +8,13 @@
 // A reply missing for N cycles is a fault. The hand bus is not a CANopen bus: identifier 0x000
 // is the master's reply address, so MIT motors need their own bus.
 //
-// Cycle: BusRouter::poll, update(now), set_command(), transmit(now). Real-time safe after create().
+// Cycle: BusRouter::poll, update(now), setCommand(), transmit(now). Real-time safe after create().
 //
-// As a JointDevice (device.hpp) joint i is motor i, JointMode::Impedance: set_joint packs
+// As a JointDevice (device.hpp) joint i is motor i, JointMode::Impedance: setJoint packs
 // (position, velocity, stiffness -> kp, damping -> kd, torque -> t), a negative stiffness or
-// damping taking the motor's configured default_kp / default_kd. request_quick_stop() holds every
+// damping taking the motor's configured default_kp / default_kd. requestQuickStop() holds every
 // motor that is On with damping only (kp = 0, kd = quick_stop_kd, t = 0, v = 0) and ignores
-// setpoints until the next request_enable() or request_disable().
+// setpoints until the next requestEnable() or requestDisable().
 #pragma once
 
 #include <array>
@@ -44,7 +44,7 @@ struct MitMotorConfig {
   float position_max = std::numeric_limits<float>::infinity();
   float default_kp = 0.0f;     ///< N m/rad: JointCommand::stiffness < 0
   float default_kd = 0.0f;     ///< N m s/rad: JointCommand::damping < 0
-  float quick_stop_kd = 0.0f;  ///< N m s/rad: the damping of request_quick_stop()
+  float quick_stop_kd = 0.0f;  ///< N m s/rad: the damping of requestQuickStop()
 };
 
 struct MitHandConfig {
@@ -77,32 +77,32 @@ class MitHandDriver final : public JointDevice, public FrameHandler {
   const char* kind() const noexcept override { return "mit_hand"; }
   /// Nothing to boot: motors are polled from the first transmit().
   void start(TimeNs) noexcept override {}
-  bool ready() const noexcept override { return all_on(); }
-  void request_enable(TimeNs now) noexcept override;
-  void request_disable(TimeNs now) noexcept override;
+  bool ready() const noexcept override { return allOn(); }
+  void requestEnable(TimeNs now) noexcept override;
+  void requestDisable(TimeNs now) noexcept override;
   /// Holds every motor with damping only (see above).
-  void request_quick_stop(TimeNs now) noexcept override;
+  void requestQuickStop(TimeNs now) noexcept override;
 
   const FaultReport& update(TimeNs now) noexcept override;
   /// Impedance command for the next transmit() (used while the motor is On).
-  SetpointResult set_command(std::size_t motor, const mrqp_fw_mit_cmd& cmd) noexcept;
+  SetpointResult setCommand(std::size_t motor, const mrqp_fw_mit_cmd& cmd) noexcept;
   std::size_t transmit(TimeNs now) noexcept override;
 
   // JointDevice: joint i is motor i.
-  std::size_t joint_count() const noexcept override { return motors_.size(); }
-  JointMode joint_mode(std::size_t) const noexcept override { return JointMode::Impedance; }
-  SetpointResult set_joint(std::size_t joint, const JointCommand& command) noexcept override;
+  std::size_t jointCount() const noexcept override { return motors_.size(); }
+  JointMode jointMode(std::size_t) const noexcept override { return JointMode::Impedance; }
+  SetpointResult setJoint(std::size_t joint, const JointCommand& command) noexcept override;
   JointFeedback joint(std::size_t joint) const noexcept override;
-  bool quick_stopped() const noexcept { return quick_stop_; }
+  bool quickStopped() const noexcept { return quick_stop_; }
 
-  Claim on_frame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
+  Claim onFrame(const BusRouter& from, const RxFrame& rx, TimeNs now) noexcept override;
 
-  bool all_on() const noexcept;
-  bool all_off() const noexcept;
-  std::size_t motor_count() const noexcept { return motors_.size(); }
+  bool allOn() const noexcept;
+  bool allOff() const noexcept;
+  std::size_t motorCount() const noexcept { return motors_.size(); }
   const MitMotorState& motor(std::size_t i) const noexcept { return motors_[i].state; }
   const FaultReport& faults() const noexcept override { return routers_.report(); }
-  void declare_traffic(std::size_t bus, BusBudget& budget) const override;
+  void declareTraffic(std::size_t bus, BusBudget& budget) const override;
 
  private:
   struct Motor {

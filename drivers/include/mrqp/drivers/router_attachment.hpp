@@ -3,7 +3,7 @@
 //
 // A driver (a FrameHandler) owns one RouterAttachment. create() calls attach() once (setup:
 // allocates the fault arrays, registers the driver with every router); the destructor removes
-// the driver from the routers again. Each update() calls start_cycle() first (this cycle's
+// the driver from the routers again. Each update() calls startCycle() first (this cycle's
 // BusFaults), fills device(i), and ends with publish(). Everything but attach() is real-time safe.
 #pragma once
 
@@ -31,13 +31,13 @@ class RouterAttachment {
   /// reason naming the bus ("bus 2 given twice"); an empty string on success.
   std::string attach(const std::vector<BusRouter*>& routers, FrameHandler& handler, std::size_t devices);
 
-  std::size_t bus_count() const noexcept { return routers_.size(); }
+  std::size_t busCount() const noexcept { return routers_.size(); }
   BusRouter& router(std::size_t bus) const noexcept { return *routers_[bus]; }
   /// Index of `router` among the attached ones, -1 if it is not one of them.
-  int slot_of(const BusRouter& router) const noexcept;
+  int slotOf(const BusRouter& router) const noexcept;
 
   /// Start of update(): counts the cycle and takes this cycle's BusFaults from every router.
-  void start_cycle() noexcept;
+  void startCycle() noexcept;
   /// The faults of device `i` in the report (update() writes them each cycle).
   DeviceFaults& device(std::size_t i) noexcept { return device_faults_[i]; }
   /// End of update(): the report's flags, the OR of every device and bus flag of this cycle.

@@ -1,7 +1,7 @@
 // mrqp drivers -- the in-process CAN bus: a deterministic model of the physical layer for tests.
 //
 // A SimBus is the wire; each SimNode attached to it is one CAN controller and implements Bus.
-// Time is simulated and only moves when the test calls advance()/advance_to(). The model:
+// Time is simulated and only moves when the test calls advance()/advanceTo(). The model:
 //
 //  - bit rates: nominal (arbitration) rate, and for CAN FD the data-phase rate used by frames
 //    with the bit-rate switch (BRS) flag;
@@ -27,13 +27,13 @@
 //    by an error are retransmitted automatically (unless one_shot), after a 6-bit error flag,
 //    8-bit delimiter and 3-bit intermission;
 //  - each node's transmit queue is ordered by ready time (FIFO for frames ready at the same
-//    time), like a SocketCAN queue; send_at() lets a fake device schedule a frame later.
+//    time), like a SocketCAN queue; sendAt() lets a fake device schedule a frame later.
 //
 // Frames are delivered to a node's receive queue (or its SimListener) at the end of the frame,
 // timestamped with that time. A SimListener is how tests emulate device firmware: it is called
 // from inside advance() at the simulated time of the event (reception, end of its own
 // transmission, its timer) and may send frames or set its timer; it must not call advance().
-// Construction and add_node() allocate; everything else is real-time safe (no allocation).
+// Construction and addNode() allocate; everything else is real-time safe (no allocation).
 #pragma once
 
 #include <cstddef>
@@ -70,7 +70,7 @@ struct SimNodeConfig {
 /// What happened to one transmission attempt on the wire.
 enum class WireOutcome : std::uint8_t { Delivered = 0, NoAck, BitError, Collision };
 
-const char* wire_outcome_str(WireOutcome outcome) noexcept;
+const char* wireOutcomeStr(WireOutcome outcome) noexcept;
 
 struct WireEvent {
   TimeNs start = 0;
@@ -84,7 +84,7 @@ struct WireEvent {
 /// Observer of every transmission attempt (a "bus analyser" for tests).
 class SimTap {
  public:
-  virtual void on_wire(const WireEvent& event) noexcept = 0;
+  virtual void onWire(const WireEvent& event) noexcept = 0;
 
  protected:
   ~SimTap() = default;
@@ -96,11 +96,11 @@ class SimNode;
 class SimListener {
  public:
   /// A data frame (kind Frame) or an error event (kind ErrorEvent) reached the node.
-  virtual void on_receive(SimNode& node, ReceiveResult kind, const RxFrame& rx) noexcept = 0;
+  virtual void onReceive(SimNode& node, ReceiveResult kind, const RxFrame& rx) noexcept = 0;
   /// One of the node's frames was transmitted successfully; `end` is the end of the frame.
-  virtual void on_transmitted(SimNode& node, const mrqp_fw_frame& frame, TimeNs end) noexcept;
-  /// The node's timer (SimNode::set_timer) expired at `now`.
-  virtual void on_timer(SimNode& node, TimeNs now) noexcept;
+  virtual void onTransmitted(SimNode& node, const mrqp_fw_frame& frame, TimeNs end) noexcept;
+  /// The node's timer (SimNode::setTimer) expired at `now`.
+  virtual void onTimer(SimNode& node, TimeNs now) noexcept;
 
  protected:
   ~SimListener() = default;
@@ -123,34 +123,34 @@ class SimNode final : public Bus {
   SendResult send(const mrqp_fw_frame& frame) noexcept override;
   ReceiveResult receive(RxFrame& out) noexcept override;
   BusStatus status() const noexcept override;
-  bool fd_enabled() const noexcept override;
+  bool fdEnabled() const noexcept override;
   const char* name() const noexcept override;
-  bool echoes_own() const noexcept override { return config_.echo_own; }
+  bool echoesOwn() const noexcept override { return config_.echo_own; }
 
   /// Queues a frame that becomes ready for arbitration at `ready` (>= now).
-  SendResult send_at(const mrqp_fw_frame& frame, TimeNs ready) noexcept;
+  SendResult sendAt(const mrqp_fw_frame& frame, TimeNs ready) noexcept;
   /// Drops every frame waiting in the transmit queue (a controller reset), not counted as failed.
-  void cancel_pending() noexcept;
+  void cancelPending() noexcept;
   /// Frames waiting in the transmit queue.
-  std::size_t tx_pending() const noexcept { return tx_count_; }
+  std::size_t txPending() const noexcept { return tx_count_; }
   /// Receive-queue items waiting.
-  std::size_t rx_pending() const noexcept { return rx_count_; }
+  std::size_t rxPending() const noexcept { return rx_count_; }
   std::size_t index() const noexcept { return index_; }
   SimBus& bus() noexcept { return *bus_; }
   const SimNodeConfig& config() const noexcept { return config_; }
 
-  /// One-shot timer for the listener (a firmware timer): on_timer() is called at `at` (replaces
+  /// One-shot timer for the listener (a firmware timer): onTimer() is called at `at` (replaces
   /// a pending timer). Timers fire even while the bus is busy.
-  void set_timer(TimeNs at) noexcept { timer_at_ = at; }
-  void cancel_timer() noexcept { timer_at_ = kNoTimer; }
+  void setTimer(TimeNs at) noexcept { timer_at_ = at; }
+  void cancelTimer() noexcept { timer_at_ = kNoTimer; }
   /// Routes received frames and error events to `listener` instead of the receive queue.
-  void set_listener(SimListener* listener) noexcept { listener_ = listener; }
+  void setListener(SimListener* listener) noexcept { listener_ = listener; }
   /// Power / wiring: a disconnected node neither transmits, receives nor acknowledges; its
   /// queues are flushed. Reconnecting starts error active with both counters 0.
-  void set_connected(bool connected) noexcept;
+  void setConnected(bool connected) noexcept;
   bool connected() const noexcept { return connected_; }
   /// The next `count` transmission attempts of this node suffer a bit error (noise).
-  void inject_tx_errors(std::uint32_t count) noexcept { inject_errors_ += count; }
+  void injectTxErrors(std::uint32_t count) noexcept { inject_errors_ += count; }
 
   ~SimNode() override;
 
@@ -166,14 +166,14 @@ class SimNode final : public Bus {
   };
 
   SimNode(SimBus& bus, std::size_t index, const SimNodeConfig& config);
-  bool frame_valid(const mrqp_fw_frame& frame) const noexcept;
-  const TxEntry& tx_head() const noexcept { return tx_[tx_head_]; }
-  void tx_pop() noexcept;
-  void tx_flush() noexcept;
+  bool frameValid(const mrqp_fw_frame& frame) const noexcept;
+  const TxEntry& txHead() const noexcept { return tx_[tx_head_]; }
+  void txPop() noexcept;
+  void txFlush() noexcept;
   void deliver(ReceiveResult kind, const RxFrame& rx) noexcept;
-  void emit_error(std::uint32_t flags, TimeNs when) noexcept;
+  void emitError(std::uint32_t flags, TimeNs when) noexcept;
   /// Sets counters, derives the state and emits one event with `flags` + state-change flags.
-  void set_counters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept;
+  void setCounters(std::uint32_t tec, std::uint32_t rec, std::uint32_t flags, TimeNs when) noexcept;
 
   static constexpr TimeNs kNoTimer = INT64_MAX;
   SimBus* bus_;
@@ -207,25 +207,25 @@ class SimBus {
   ~SimBus();
 
   /// Attaches a new node (setup: allocates). Returns nullptr once max_nodes are attached.
-  SimNode* add_node(const SimNodeConfig& config);
-  std::size_t node_count() const noexcept { return nodes_.size(); }
+  SimNode* addNode(const SimNodeConfig& config);
+  std::size_t nodeCount() const noexcept { return nodes_.size(); }
   SimNode& node(std::size_t i) noexcept { return *nodes_[i]; }
 
   TimeNs now() const noexcept { return now_; }
   /// Runs the bus until now() + dt / until t (no-op if t < now()).
-  void advance(TimeNs dt) noexcept { advance_to(now_ + dt); }
-  void advance_to(TimeNs t) noexcept;
+  void advance(TimeNs dt) noexcept { advanceTo(now_ + dt); }
+  void advanceTo(TimeNs t) noexcept;
 
   /// Bits of a successful transmission of `frame` (with this bus's stuffing model).
-  mrqp_fw_frame_bits frame_bits(const mrqp_fw_frame& frame) const noexcept;
+  mrqp_fw_frame_bits frameBits(const mrqp_fw_frame& frame) const noexcept;
   /// Duration in ns of `bits` at this bus's rates.
-  TimeNs bits_time(mrqp_fw_frame_bits bits) const noexcept;
+  TimeNs bitsTime(mrqp_fw_frame_bits bits) const noexcept;
   /// Duration of a successful transmission of `frame`.
-  TimeNs frame_time(const mrqp_fw_frame& frame) const noexcept { return bits_time(frame_bits(frame)); }
+  TimeNs frameTime(const mrqp_fw_frame& frame) const noexcept { return bitsTime(frameBits(frame)); }
   /// One nominal bit time in ns (rounded up).
-  TimeNs bit_time() const noexcept;
+  TimeNs bitTime() const noexcept;
 
-  void set_tap(SimTap* tap) noexcept { tap_ = tap; }
+  void setTap(SimTap* tap) noexcept { tap_ = tap; }
   const SimBusStats& stats() const noexcept { return stats_; }
   const SimBusConfig& config() const noexcept { return config_; }
   bool busy() const noexcept { return busy_; }
@@ -234,16 +234,16 @@ class SimBus {
   friend class SimNode;
   static constexpr TimeNs kNever = INT64_MAX;
 
-  TimeNs eligible_time(const SimNode& n) const noexcept;
-  TimeNs next_timer() const noexcept;
-  void fire_timers(TimeNs t) noexcept;
-  TimeNs next_tx_start() const noexcept;
-  TimeNs next_recovery() const noexcept;
-  void account_idle(TimeNs t) noexcept;
-  void recover_due(TimeNs t) noexcept;
-  void start_frame(TimeNs t) noexcept;
-  void finish_frame() noexcept;
-  bool is_receiver(const SimNode& n) const noexcept;
+  TimeNs eligibleTime(const SimNode& n) const noexcept;
+  TimeNs nextTimer() const noexcept;
+  void fireTimers(TimeNs t) noexcept;
+  TimeNs nextTxStart() const noexcept;
+  TimeNs nextRecovery() const noexcept;
+  void accountIdle(TimeNs t) noexcept;
+  void recoverDue(TimeNs t) noexcept;
+  void startFrame(TimeNs t) noexcept;
+  void finishFrame() noexcept;
+  bool isReceiver(const SimNode& n) const noexcept;
 
   SimBusConfig config_;
   std::vector<std::unique_ptr<SimNode>> nodes_;

@@ -48,21 +48,21 @@ class SocketCanBus final : public Bus {
   /// a message naming the failing step and the system error.
   bool open(const SocketCanConfig& config, std::string* error);
   void close() noexcept;
-  bool is_open() const noexcept { return fd_ >= 0; }
-  int native_handle() const noexcept { return fd_; }
+  bool isOpen() const noexcept { return fd_ >= 0; }
+  int nativeHandle() const noexcept { return fd_; }
 
   SendResult send(const mrqp_fw_frame& frame) noexcept override;
   ReceiveResult receive(RxFrame& out) noexcept override;
   BusStatus status() const noexcept override { return status_; }
-  bool fd_enabled() const noexcept override { return fd_frames_; }
+  bool fdEnabled() const noexcept override { return fd_frames_; }
   const char* name() const noexcept override { return name_; }
-  bool echoes_own() const noexcept override { return receive_own_; }
+  bool echoesOwn() const noexcept override { return receive_own_; }
 
   /// errno of the last failed system call in send()/receive() (0 if none).
-  int last_errno() const noexcept { return last_errno_; }
+  int lastErrno() const noexcept { return last_errno_; }
 
  private:
-  void on_error_frame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept;
+  void onErrorFrame(const std::uint8_t* data, std::uint32_t can_id, RxFrame& out) noexcept;
 
   int fd_ = -1;
   bool fd_frames_ = false;

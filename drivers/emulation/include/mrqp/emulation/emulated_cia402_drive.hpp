@@ -8,7 +8,7 @@
 // RPDO1 applied and TPDO1/TPDO2 sent on SYNC only when configured exactly as the mrqp contract
 // maps them; EMCY on faults and "error reset" when a fault is reset.
 //
-// It is transport-free: frames come in through on_frame(), time moves through advance(), and
+// It is transport-free: frames come in through onFrame(), time moves through advance(), and
 // frames go out through the Host, which also supplies the motion behind the state machine (what
 // the TPDOs report). The test fakes of tests/drivers put it on a SimNode, mrqp-drive-emu
 // (tools/drive_emu) runs one per node id with a physical joint model, the controller loop's plant
@@ -20,9 +20,9 @@
 // and device type 0x1000. VendorProfile::lenient() (the default) is the behaviour it always had.
 //
 // Fault switches (off by default; with all off the drive behaves exactly as before they existed):
-// stop_heartbeat_at(), set_pdo_silent() (no TPDOs: feedback missing), set_silent() (no frame at
-// all: no heartbeat, no SDO answer, no PDO, no EMCY), corrupt_pdos(n) (the next n TPDOs one byte
-// short), raise_fault() (EMCY and the CiA 402 Fault state).
+// stopHeartbeatAt(), setPdoSilent() (no TPDOs: feedback missing), setSilent() (no frame at
+// all: no heartbeat, no SDO answer, no PDO, no EMCY), corruptPdos(n) (the next n TPDOs one byte
+// short), raiseFault() (EMCY and the CiA 402 Fault state).
 #pragma once
 
 #include <array>
@@ -65,10 +65,10 @@ class EmulatedCia402Drive {
     /// A frame of the drive, ready for the bus at `at`.
     virtual void emit(const mrqp_fw_frame& frame, TimeNs at) noexcept = 0;
     /// NMT reset node (`application`) or reset communication, once the drive has been reset.
-    virtual void on_nmt_reset(bool application) noexcept;
+    virtual void onNmtReset(bool application) noexcept;
     /// A SYNC in Operational, after the state machine took this cycle's RPDO (`new_targets`
     /// when there was one): moves the motion on and returns what the TPDOs report.
-    virtual Feedback on_sync(const EmulatedCia402Drive& drive, bool new_targets, TimeNs now) noexcept = 0;
+    virtual Feedback onSync(const EmulatedCia402Drive& drive, bool new_targets, TimeNs now) noexcept = 0;
 
    protected:
     ~Host() = default;
@@ -83,29 +83,29 @@ class EmulatedCia402Drive {
   EmulatedCia402Drive& operator=(const EmulatedCia402Drive&) = delete;
 
   /// A frame on the bus at `now` (call advance(now) first when events may be due).
-  Received on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  Received onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   /// The end of the boot and the heartbeat, when due at or before `now`.
   void advance(TimeNs now) noexcept;
   /// The next time advance() has something to do, kNever if none.
-  TimeNs next_event() const noexcept;
+  TimeNs nextEvent() const noexcept;
 
   // ---- power and fault injection ----
   /// Power on again: the object dictionary and the state machines restart, boot-up after the boot delay.
-  void power_on(TimeNs now) noexcept;
+  void powerOn(TimeNs now) noexcept;
   /// A fault: EMCY with `code` at `now`, Fault reaction active, then Fault at the next SYNC.
-  void raise_fault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept;
+  void raiseFault(std::uint16_t code, std::uint8_t error_register, TimeNs now) noexcept;
   /// No heartbeat from `t` on (a heartbeat due at or after `t` is not sent).
-  void stop_heartbeat_at(TimeNs t) noexcept { heartbeat_stop_at_ = t; }
+  void stopHeartbeatAt(TimeNs t) noexcept { heartbeat_stop_at_ = t; }
   /// No TPDOs (the heartbeat continues).
-  void set_pdo_silent(bool silent) noexcept { pdo_silent_ = silent; }
+  void setPdoSilent(bool silent) noexcept { pdo_silent_ = silent; }
   /// No frame at all (the drive still receives and runs its state machines).
-  void set_silent(bool silent) noexcept { silent_ = silent; }
+  void setSilent(bool silent) noexcept { silent_ = silent; }
   /// The next `n` TPDOs are sent one byte short (a corrupt frame to the master).
-  void corrupt_pdos(unsigned n) noexcept { corrupt_left_ = n; }
+  void corruptPdos(unsigned n) noexcept { corrupt_left_ = n; }
   /// Answer SDO writes to index:sub with this abort code.
-  void abort_on_write(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
+  void abortOnWrite(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
   /// Report this mode in the TPDO2 mode display instead of 0x6060.
-  void force_mode_display(std::int8_t mode) noexcept {
+  void forceModeDisplay(std::int8_t mode) noexcept {
     forced_mode_ = mode;
     force_mode_ = true;
   }
@@ -117,23 +117,23 @@ class EmulatedCia402Drive {
   /// An object dictionary entry; false if there is none.
   bool od(std::uint16_t index, std::uint8_t sub, std::uint32_t* value) const noexcept;
   /// An object dictionary value, 0 if there is no such entry.
-  std::uint32_t od_value(std::uint16_t index, std::uint8_t sub) const noexcept;
+  std::uint32_t odValue(std::uint16_t index, std::uint8_t sub) const noexcept;
   /// Modes of operation (0x6060).
-  std::int8_t mode() const noexcept { return static_cast<std::int8_t>(od_value(0x6060, 0)); }
+  std::int8_t mode() const noexcept { return static_cast<std::int8_t>(odValue(0x6060, 0)); }
   /// Targets of the last RPDO applied at a SYNC (increments, per mille).
-  std::int32_t target_position() const noexcept { return target_position_; }
-  std::int16_t target_torque() const noexcept { return target_torque_; }
-  std::uint16_t last_controlword() const noexcept { return controlword_; }
-  std::uint16_t error_code() const noexcept { return error_code_; }
-  unsigned sdo_writes() const noexcept { return sdo_writes_; }
+  std::int32_t targetPosition() const noexcept { return target_position_; }
+  std::int16_t targetTorque() const noexcept { return target_torque_; }
+  std::uint16_t lastControlword() const noexcept { return controlword_; }
+  std::uint16_t errorCode() const noexcept { return error_code_; }
+  unsigned sdoWrites() const noexcept { return sdo_writes_; }
   unsigned syncs() const noexcept { return syncs_; }
   /// Communication errors (SYNC timeouts) so far; whether one is still active (no SYNC since).
-  unsigned comm_errors() const noexcept { return comm_errors_; }
-  bool comm_error_active() const noexcept { return comm_error_active_; }
+  unsigned commErrors() const noexcept { return comm_errors_; }
+  bool commErrorActive() const noexcept { return comm_error_active_; }
   const VendorProfile& profile() const noexcept { return options_.profile; }
-  bool rpdo1_configured() const noexcept;
-  bool tpdo1_configured() const noexcept;
-  bool tpdo2_configured() const noexcept;
+  bool rpdo1Configured() const noexcept;
+  bool tpdo1Configured() const noexcept;
+  bool tpdo2Configured() const noexcept;
 
  private:
   struct Entry {
@@ -143,19 +143,19 @@ class EmulatedCia402Drive {
     bool writable;
     std::uint32_t value;
   };
-  void reset_od(bool communication_only) noexcept;
+  void resetOd(bool communication_only) noexcept;
   bool present(std::uint16_t index) const noexcept;
-  TimeNs sync_deadline() const noexcept;
-  void comm_error(TimeNs now) noexcept;
-  std::uint16_t other_status_bits() const noexcept;
+  TimeNs syncDeadline() const noexcept;
+  void commError(TimeNs now) noexcept;
+  std::uint16_t otherStatusBits() const noexcept;
   Entry* find(std::uint16_t index, std::uint8_t sub) noexcept;
   const Entry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
-  bool object_exists(std::uint16_t index) const noexcept;
-  std::uint32_t check_write(const Entry& e, std::uint32_t v) const noexcept;
-  bool pdo_ok(std::uint16_t comm, std::uint16_t map, std::uint32_t cob, mrqp_fw_arm_pdo which) const noexcept;
-  void on_nmt(const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sdo(const mrqp_fw_frame& f, TimeNs now) noexcept;
-  void on_sync(TimeNs now) noexcept;
+  bool objectExists(std::uint16_t index) const noexcept;
+  std::uint32_t checkWrite(const Entry& e, std::uint32_t v) const noexcept;
+  bool pdoOk(std::uint16_t comm, std::uint16_t map, std::uint32_t cob, mrqp_fw_arm_pdo which) const noexcept;
+  void onNmt(const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void onSdo(const mrqp_fw_frame& f, TimeNs now) noexcept;
+  void onSync(TimeNs now) noexcept;
   void send(mrqp_fw_frame f, TimeNs at, bool pdo) noexcept;
 
   Host& host_;

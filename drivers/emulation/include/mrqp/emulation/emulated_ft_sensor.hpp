@@ -6,10 +6,10 @@
 // node) or the CAN FD frame (0x180 + node), seq + 1 per SYNC. The tare command (0x200 + node)
 // stores the current wrench as the offset (or clears it); the status bit TARED says which.
 //
-// Fault switches: set_silent() (no samples: feedback missing), corrupt_samples(n) (the next n
+// Fault switches: setSilent() (no samples: feedback missing), corruptSamples(n) (the next n
 // samples corrupt: the moments half one byte short, or the FD frame with a flipped bit),
-// set_stale() (the last values repeated with status STALE: the ADC stopped), raise_fault() /
-// clear_fault() (status FAULT), drop_moments(n) (only the forces half: torn pairs). No allocation.
+// setStale() (the last values repeated with status STALE: the ADC stopped), raiseFault() /
+// clearFault() (status FAULT), dropMoments(n) (only the forces half: torn pairs). No allocation.
 #pragma once
 
 #include <array>
@@ -47,17 +47,17 @@ class EmulatedFtSensor {
   EmulatedFtSensor& operator=(const EmulatedFtSensor&) = delete;
 
   /// A frame on the bus at `now`; true if it was a SYNC or a tare command for this sensor.
-  bool on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  bool onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   void advance(TimeNs) noexcept {}
-  TimeNs next_event() const noexcept { return INT64_MAX; }
+  TimeNs nextEvent() const noexcept { return INT64_MAX; }
 
   // ---- fault injection ----
-  void set_silent(bool silent) noexcept { silent_ = silent; }
-  void corrupt_samples(unsigned n) noexcept { corrupt_left_ = n; }
-  void set_stale(bool stale) noexcept { stale_ = stale; }
-  void raise_fault() noexcept { faulted_ = true; }
-  void clear_fault() noexcept { faulted_ = false; }
-  void drop_moments(unsigned n) noexcept { drop_moments_ = n; }
+  void setSilent(bool silent) noexcept { silent_ = silent; }
+  void corruptSamples(unsigned n) noexcept { corrupt_left_ = n; }
+  void setStale(bool stale) noexcept { stale_ = stale; }
+  void raiseFault() noexcept { faulted_ = true; }
+  void clearFault() noexcept { faulted_ = false; }
+  void dropMoments(unsigned n) noexcept { drop_moments_ = n; }
 
   // ---- observation ----
   bool tared() const noexcept { return tared_; }

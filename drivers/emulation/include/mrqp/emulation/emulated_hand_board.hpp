@@ -10,9 +10,9 @@
 // bit CRC_ERROR_SEEN. With a command timeout, no valid command for that long drops an enabled
 // board into HOLD with COMMAND_TIMEOUT set (cleared by the next command).
 //
-// Fault switches: set_silent() (no feedback), corrupt_feedback(n) (the next n feedback frames with
-// a flipped bit: CRC error at the master), set_stale() (joints no longer read from the host and
-// the counter stands still: the master sees a counter gap), raise_fault() (status FAULT, servo
+// Fault switches: setSilent() (no feedback), corruptFeedback(n) (the next n feedback frames with
+// a flipped bit: CRC error at the master), setStale() (joints no longer read from the host and
+// the counter stands still: the master sees a counter gap), raiseFault() (status FAULT, servo
 // off, commanded modes ignored until a DISABLED command clears it). No allocation.
 #pragma once
 
@@ -45,17 +45,17 @@ class EmulatedHandBoard {
   EmulatedHandBoard& operator=(const EmulatedHandBoard&) = delete;
 
   /// A frame on the bus at `now`; true if it was a command to this board.
-  bool on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  bool onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   /// The command timeout, when due at or before `now`.
   void advance(TimeNs now) noexcept;
-  TimeNs next_event() const noexcept;
+  TimeNs nextEvent() const noexcept;
 
   // ---- power and fault injection ----
-  void power_on(TimeNs now) noexcept;
-  void set_silent(bool silent) noexcept { silent_ = silent; }
-  void corrupt_feedback(unsigned n) noexcept { corrupt_left_ = n; }
-  void set_stale(bool stale) noexcept { stale_ = stale; }
-  void raise_fault(TimeNs now) noexcept;
+  void powerOn(TimeNs now) noexcept;
+  void setSilent(bool silent) noexcept { silent_ = silent; }
+  void corruptFeedback(unsigned n) noexcept { corrupt_left_ = n; }
+  void setStale(bool stale) noexcept { stale_ = stale; }
+  void raiseFault(TimeNs now) noexcept;
 
   // ---- observation ----
   std::uint8_t mode() const noexcept { return mode_; }
@@ -64,8 +64,8 @@ class EmulatedHandBoard {
   unsigned commands() const noexcept { return commands_; }
 
  private:
-  void set_mode(std::uint8_t mode, TimeNs now) noexcept;
-  void servo_off(TimeNs now) noexcept;
+  void setMode(std::uint8_t mode, TimeNs now) noexcept;
+  void servoOff(TimeNs now) noexcept;
 
   JointHost& host_;
   Options options_;

@@ -4,9 +4,9 @@
 // answers after the response delay with its CAN FD sample frame (0x180 + node), seq + 1 per
 // SYNC, status ALIGNING until `align_until` (the attitude filter converging after power-on).
 //
-// Fault switches: set_silent() (no samples), corrupt_samples(n) (the next n frames with a
-// flipped bit: CRC error), set_stale() (the last values repeated with status STALE),
-// raise_fault() / clear_fault() (status FAULT). No allocation.
+// Fault switches: setSilent() (no samples), corruptSamples(n) (the next n frames with a
+// flipped bit: CRC error), setStale() (the last values repeated with status STALE),
+// raiseFault() / clearFault() (status FAULT). No allocation.
 #pragma once
 
 #include <array>
@@ -50,16 +50,16 @@ class EmulatedImu {
   EmulatedImu& operator=(const EmulatedImu&) = delete;
 
   /// A frame on the bus at `now`; true if it was a SYNC.
-  bool on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  bool onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   void advance(TimeNs) noexcept {}
-  TimeNs next_event() const noexcept { return INT64_MAX; }
+  TimeNs nextEvent() const noexcept { return INT64_MAX; }
 
   // ---- fault injection ----
-  void set_silent(bool silent) noexcept { silent_ = silent; }
-  void corrupt_samples(unsigned n) noexcept { corrupt_left_ = n; }
-  void set_stale(bool stale) noexcept { stale_ = stale; }
-  void raise_fault() noexcept { faulted_ = true; }
-  void clear_fault() noexcept { faulted_ = false; }
+  void setSilent(bool silent) noexcept { silent_ = silent; }
+  void corruptSamples(unsigned n) noexcept { corrupt_left_ = n; }
+  void setStale(bool stale) noexcept { stale_ = stale; }
+  void raiseFault() noexcept { faulted_ = true; }
+  void clearFault() noexcept { faulted_ = false; }
 
   unsigned syncs() const noexcept { return syncs_; }
 

@@ -1,16 +1,16 @@
 // mrqp emulation -- one MIT-mode motor's firmware (firmware_if/mit_frame.h), transport-free.
 //
-// Frames come in through on_frame(); each frame addressed to the motor (its id) is answered with
+// Frames come in through onFrame(); each frame addressed to the motor (its id) is answered with
 // one reply (identifier 0x000: id, position, velocity, torque measured through the host) after
 // the response delay, as the motor controllers of that protocol do: "enter motor mode" enables
 // the servo (zero gains until the first command), "exit motor mode" disables it, "zero" makes
 // the current position the zero of the reported (and commanded) position, an impedance command
 // sets the servo (p, v, kp, kd, t) while enabled and is only answered while disabled.
 //
-// Fault switches: set_silent() (no reply: the master's feedback goes missing), corrupt_replies(n)
-// (the next n replies one byte short), set_stale() (replies repeat the last measurement: the
-// encoder stopped), raise_fault() (the controller trips: leaves motor mode and stops answering
-// until power_on(), since the MIT reply has no fault field). No allocation.
+// Fault switches: setSilent() (no reply: the master's feedback goes missing), corruptReplies(n)
+// (the next n replies one byte short), setStale() (replies repeat the last measurement: the
+// encoder stopped), raiseFault() (the controller trips: leaves motor mode and stops answering
+// until powerOn(), since the MIT reply has no fault field). No allocation.
 #pragma once
 
 #include <cstddef>
@@ -35,28 +35,28 @@ class EmulatedMitMotor {
   EmulatedMitMotor& operator=(const EmulatedMitMotor&) = delete;
 
   /// A frame on the bus at `now`; true if it was addressed to this motor.
-  bool on_frame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
+  bool onFrame(const mrqp_fw_frame& frame, TimeNs now) noexcept;
   /// Nothing is timed in this firmware (kept for the common device shape).
   void advance(TimeNs) noexcept {}
-  TimeNs next_event() const noexcept { return INT64_MAX; }
+  TimeNs nextEvent() const noexcept { return INT64_MAX; }
 
   // ---- power and fault injection ----
   /// Power on again: motor mode off, zero offset cleared, fault cleared.
-  void power_on(TimeNs now) noexcept;
-  void set_silent(bool silent) noexcept { silent_ = silent; }
-  void corrupt_replies(unsigned n) noexcept { corrupt_left_ = n; }
-  void set_stale(bool stale) noexcept { stale_ = stale; }
-  void raise_fault(TimeNs now) noexcept;
+  void powerOn(TimeNs now) noexcept;
+  void setSilent(bool silent) noexcept { silent_ = silent; }
+  void corruptReplies(unsigned n) noexcept { corrupt_left_ = n; }
+  void setStale(bool stale) noexcept { stale_ = stale; }
+  void raiseFault(TimeNs now) noexcept;
 
   // ---- observation ----
-  std::uint8_t motor_id() const noexcept { return options_.motor_id; }
+  std::uint8_t motorId() const noexcept { return options_.motor_id; }
   bool enabled() const noexcept { return servo_.enabled; }
   bool faulted() const noexcept { return faulted_; }
   const ServoCommand& servo() const noexcept { return servo_; }
   unsigned frames() const noexcept { return frames_; }
 
  private:
-  void set_servo(const ServoCommand& s, TimeNs now) noexcept;
+  void setServo(const ServoCommand& s, TimeNs now) noexcept;
 
   JointHost& host_;
   Options options_;

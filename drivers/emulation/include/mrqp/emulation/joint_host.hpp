@@ -4,7 +4,7 @@
 //
 // One JointHost may serve many devices: each device is configured with the index of its first
 // joint in the host's numbering (Options::joint), so a robot's plant can implement one host for
-// all its motors and boards. Every call is made from the device's on_frame() / advance().
+// all its motors and boards. Every call is made from the device's onFrame() / advance().
 #pragma once
 
 #include <cstddef>

@@ -1,10 +1,10 @@
 // mrqp emulation -- emulated device firmware on a SimBus node.
 //
 // A SimDeviceNode is the SimListener of one SimNode: every frame the node receives goes to each
-// device added (on_frame(frame, reception time)), and the node's timer runs their advance() at
-// the earliest next_event(). Devices of one type share a node (several MIT motors behind one
+// device added (onFrame(frame, reception time)), and the node's timer runs their advance() at
+// the earliest nextEvent(). Devices of one type share a node (several MIT motors behind one
 // controller); put devices of different types on nodes of their own. The device's host sends its
-// frames with SimNode::send_at(frame, at). add() is set-up (allocates); the rest is real-time safe.
+// frames with SimNode::sendAt(frame, at). add() is set-up (allocates); the rest is real-time safe.
 #pragma once
 
 #include <algorithm>
@@ -18,7 +18,7 @@ namespace mrqp::emulation {
 template <class Device>
 class SimDeviceNode final : public drivers::SimListener {
  public:
-  explicit SimDeviceNode(drivers::SimNode& node) : node_(node) { node_.set_listener(this); }
+  explicit SimDeviceNode(drivers::SimNode& node) : node_(node) { node_.setListener(this); }
   SimDeviceNode(const SimDeviceNode&) = delete;
   SimDeviceNode& operator=(const SimDeviceNode&) = delete;
 
@@ -28,30 +28,30 @@ class SimDeviceNode final : public drivers::SimListener {
     rearm();
   }
   drivers::SimNode& node() noexcept { return node_; }
-  /// After a device was changed from outside (power_on(), a fault switch with a timed effect).
+  /// After a device was changed from outside (powerOn(), a fault switch with a timed effect).
   void rearm() noexcept {
     drivers::TimeNs t = INT64_MAX;
     for (Device* d : devices_) {
-      t = std::min(t, d->next_event());
+      t = std::min(t, d->nextEvent());
     }
     if (t == INT64_MAX) {
-      node_.cancel_timer();
+      node_.cancelTimer();
     } else {
-      node_.set_timer(t);
+      node_.setTimer(t);
     }
   }
 
-  void on_receive(drivers::SimNode&, drivers::ReceiveResult kind,
-                  const drivers::RxFrame& rx) noexcept override {
+  void onReceive(drivers::SimNode&, drivers::ReceiveResult kind,
+                 const drivers::RxFrame& rx) noexcept override {
     if (kind != drivers::ReceiveResult::Frame) {
       return;
     }
     for (Device* d : devices_) {
-      (void)d->on_frame(rx.frame, rx.timestamp);
+      (void)d->onFrame(rx.frame, rx.timestamp);
     }
     rearm();
   }
-  void on_timer(drivers::SimNode&, drivers::TimeNs now) noexcept override {
+  void onTimer(drivers::SimNode&, drivers::TimeNs now) noexcept override {
     for (Device* d : devices_) {
       d->advance(now);
     }

@@ -20,7 +20,7 @@ class HeartbeatConsumer {
   /// Forget the node's heartbeats (a new boot).
   void restart() noexcept { monitoring_ = false; }
   /// A heartbeat (or boot-up, state 0) of the node received at `t`.
-  void on_heartbeat(mrqp_fw_nmt_state state, TimeNs t) noexcept;
+  void onHeartbeat(mrqp_fw_nmt_state state, TimeNs t) noexcept;
   /// True when the node is monitored and silent for longer than the consumer time.
   bool process(TimeNs now) const noexcept { return monitoring_ && now - last_ > timeout_; }
 

@@ -7,13 +7,13 @@
 // command, i.e. was sent by the node after the command was on the bus. A boot-up from before (the
 // node's power-up, sent just before the reset went out) is not an answer: the node is rebooting
 // and will send another. The proof of order:
-//  - on a bus that returns the master's own frames (Bus::echoes_own(): CAN_RAW_RECV_OWN_MSGS,
-//    SimNodeConfig::echo_own), the command's TX echo (on_own_command()) is received in wire order
+//  - on a bus that returns the master's own frames (Bus::echoesOwn(): CAN_RAW_RECV_OWN_MSGS,
+//    SimNodeConfig::echo_own), the command's TX echo (onOwnCommand()) is received in wire order
 //    with the node's frames: only a boot-up received after the echo counts;
 //  - without echoes, only a boot-up received at or after the time the command was handed to the
 //    bus counts (one received earlier certainly came first; one received later but sent while the
 //    command waited for the bus is not caught: use a bus with echoes).
-// start_remote() writes NMT start (0x01) and remembers when the node was told to be operational.
+// startRemote() writes NMT start (0x01) and remembers when the node was told to be operational.
 // process(now) reports a boot that has not completed within the boot timeout.
 // Everything but the frames' transport; real-time safe, no allocation.
 #pragma once
@@ -38,23 +38,23 @@ class NmtBoot {
   /// Starts a boot at `now`: the NMT frame to send in `out`.
   void begin(TimeNs now, mrqp_fw_frame* out) noexcept;
   /// NMT start remote node: the frame in `out`; the node is expected operational from `now`.
-  void start_remote(TimeNs now, mrqp_fw_frame* out) noexcept;
+  void startRemote(TimeNs now, mrqp_fw_frame* out) noexcept;
   /// The boot command was handed to the bus at `now`.
   void sent(TimeNs now) noexcept;
   /// Whether the bus returns the master's own frames (then a boot-up only counts after the echo).
-  void set_echo(bool echo) noexcept { echo_ = echo; }
+  void setEcho(bool echo) noexcept { echo_ = echo; }
   /// The master's own NMT frame `f` came back from the bus (TX echo). True if it was this node's
   /// boot command (or a broadcast one) while the boot is awaited.
-  bool on_own_command(const mrqp_fw_frame& f) noexcept;
+  bool onOwnCommand(const mrqp_fw_frame& f) noexcept;
   /// A boot-up message of the node received at `t`. True if it answers the boot command (the
   /// node is booted); false if it came before the command was on the bus, or is not awaited.
-  bool on_boot_up(TimeNs t) noexcept;
+  bool onBootUp(TimeNs t) noexcept;
   /// True when the boot has not completed within the boot timeout of begin().
   bool process(TimeNs now) const noexcept;
 
   bool booted() const noexcept { return booted_; }
   bool waiting() const noexcept { return !booted_ && begun_; }
-  /// When the node's current NMT state was commanded (begin() or start_remote()).
+  /// When the node's current NMT state was commanded (begin() or startRemote()).
   TimeNs commanded() const noexcept { return commanded_; }
   std::uint8_t node() const noexcept { return node_; }
 

@@ -6,15 +6,15 @@
 // PDO) is also satisfied by abort 0x06020000 "object does not exist": CiA 301 leaves the number
 // of PDOs to the device, and a PDO that does not exist is as good as disabled (counted in
 // tolerated()). SdoAccess::ReadCheck reads the object (upload) and requires
-// (read & mask) == (value & mask), else Mismatch (the value read in read_value()).
+// (read & mask) == (value & mask), else Mismatch (the value read in readValue()).
 //
 // init() takes the list (setup, allocates). restart() rewinds it. process(now) starts the next
 // write when none is in flight (the request frame in `out`: Send), and turns a request
 // unanswered for the SDO timeout into a failure (Failed; when the client aborts, the abort frame
 // to send is in `out` too: FailedSend). sent(now) tells when the request actually left (a request
-// kept back by a full queue is timed from then). on_frame() takes the node's SDO responses:
+// kept back by a full queue is timed from then). onFrame() takes the node's SDO responses:
 // Done (this write accepted; the next one starts at the next process()), Send (a segment to
-// send), Failed (the node aborted: abort_code()), FailedSend (the client aborts a bad answer),
+// send), Failed (the node aborted: abortCode()), FailedSend (the client aborts a bad answer),
 // Unexpected (nothing in flight or not an answer), Mismatch (a ReadCheck read another value).
 // The transfer that failed stays current().
 // Real-time safe after init().
@@ -61,7 +61,7 @@ class SdoWriteSequence {
   /// The request in flight left at `now` (for the timeout).
   void sent(TimeNs now) noexcept { sent_at_ = now; }
   /// An SDO response of the node.
-  Step on_frame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept;
+  Step onFrame(const mrqp_fw_frame& f, mrqp_fw_frame* out) noexcept;
 
   bool done() const noexcept { return step_ >= writes_.size(); }
   bool busy() const noexcept { return busy_; }
@@ -70,13 +70,13 @@ class SdoWriteSequence {
   const SdoWrite& current() const noexcept { return writes_[step_]; }
   std::size_t position() const noexcept { return step_; }
   /// The abort code of the failed write (the node's, or the client's / timeout's).
-  std::uint32_t abort_code() const noexcept { return client_.abort_code; }
+  std::uint32_t abortCode() const noexcept { return client_.abort_code; }
   /// The value a ReadCheck read (after Mismatch).
-  std::uint32_t read_value() const noexcept { return read_value_; }
+  std::uint32_t readValue() const noexcept { return read_value_; }
   /// WriteUnlessAbsent writes answered "object does not exist" since restart(), and the last one.
   std::uint32_t tolerated() const noexcept { return tolerated_; }
-  std::uint16_t last_tolerated_index() const noexcept { return tolerated_index_; }
-  std::uint8_t last_tolerated_subindex() const noexcept { return tolerated_subindex_; }
+  std::uint16_t lastToleratedIndex() const noexcept { return tolerated_index_; }
+  std::uint8_t lastToleratedSubindex() const noexcept { return tolerated_subindex_; }
 
  private:
   std::uint8_t node_ = 1;

@@ -34,7 +34,7 @@ class SyncJitter {
   /// The next SYNC starts a new series (no interval to the previous one).
   void restart() noexcept { have_last_ = false; }
   /// A SYNC went out at `t`.
-  void on_sync(TimeNs t) noexcept;
+  void onSync(TimeNs t) noexcept;
   const SyncStats& stats() const noexcept { return stats_; }
 
  private:
