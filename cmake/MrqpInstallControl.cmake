@@ -48,7 +48,7 @@ function(mrqp_install_control)
   endforeach()
 
   # The built-in models: generated libraries and headers.
-  foreach(model panda_model jvrc1_model door_model)
+  foreach(model panda_model jvrc1_model door_model shadow_hand_model pen_model)
     if(TARGET ${model})
       get_target_property(dir ${model} MRQP_GENERATED_DIR)
       target_include_directories(${model} PUBLIC $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/mrqp/models>)

@@ -6,7 +6,7 @@
 
 namespace mrqp::scene {
 
-/// Registers panda, jvrc1 and door.
+/// Registers panda, jvrc1, door, shadow_hand (fixed base) and pen (floating base, docs/scenes.md "pen_click").
 void addBuiltinModels(ModelRegistry& registry);
 
 }  // namespace mrqp::scene

@@ -14,13 +14,13 @@ bool isDirectory(const std::string& path) {
 }  // namespace
 
 std::string builtinModelUrdf(const std::string& model) {
-  if (model == "panda" || model == "jvrc1" || model == "door") {
+  if (model == "panda" || model == "jvrc1" || model == "door" || model == "shadow_hand" || model == "pen") {
     return std::string(MRQP_SIM_MODELS_DIR) + "/" + model + ".urdf";
   }
   return {};
 }
 
-bool builtinModelFloating(const std::string& model) { return model == "jvrc1"; }
+bool builtinModelFloating(const std::string& model) { return model == "jvrc1" || model == "pen"; }
 
 std::vector<GeomSpec> builtinModelVisuals(const std::string& model) {
   std::vector<GeomSpec> out;
