@@ -1,11 +1,12 @@
-// Collision avoidance by velocity dampers between convex shapes (eq. 21, 24); see
-// collision_constraint.hpp.
+// Collision avoidance by velocity dampers between convex shapes (eq. 21, 24) over the loop's
+// semi-implicit Euler step; see collision_constraint.hpp.
 #include "collision/collision_constraint.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "collision/bounding_sphere.hpp"
+#include "collision/distance_rate.hpp"
 #include "problem/multi_robot_problem.hpp"
 
 namespace mrqp::problem {
@@ -24,6 +25,7 @@ CollisionConstraint::CollisionConstraint(std::vector<CollisionBody> bodies, std:
       xi_(pairs_.size(), 0.0),
       was_active_(pairs_.size(), 0),
       now_active_(pairs_.size(), 0),
+      row_pair_(static_cast<std::size_t>(std::max(0, rows)), -1),
       Ja_(Eigen::MatrixXd::Zero(6, std::max(1, max_nv))),
       Jb_(Eigen::MatrixXd::Zero(6, std::max(1, max_nv))) {}
 
@@ -104,10 +106,24 @@ void CollisionConstraint::update(const MultiRobotProblem& p, ConstraintRows& out
     const int oa = p.velocityOffset(ba.entity), ob = p.velocityOffset(bb.entity);
     out.C.block(r, oa, 1, ea.nv()).noalias() -= dt * nrm.transpose() * Ja.bottomRows<3>();
     out.C.block(r, ob, 1, eb.nv()).noalias() += dt * nrm.transpose() * Jb.bottomRows<3>();
-    const double ddot = nrm.dot(Jb.bottomRows<3>() * eb.v()) - nrm.dot(Ja.bottomRows<3>() * ea.v());
-    const double bias = nrm.dot(eb.frameBiasAcceleration(bb.frame, lb).tail<3>() -
-                                ea.frameBiasAcceleration(ba.frame, la).tail<3>());
+    // The witnesses' twists (ω; velocity of the witness point), then ḋ and the drift of d̈ at q̈ = 0:
+    // the witnesses' J̇ v and the curvature part (collision/distance_rate.hpp).
+    Vector6d ta, tb;
+    ta.noalias() = Ja * ea.v();
+    tb.noalias() = Jb * eb.v();
+    const double ddot = nrm.dot(tb.tail<3>() - ta.tail<3>());
+    collision::RigidMotion ma, mb;
+    ma.omega = ta.head<3>();
+    ma.v = ta.tail<3>();
+    ma.at = res.a;
+    mb.omega = tb.head<3>();
+    mb.v = tb.tail<3>();
+    mb.at = res.b;
+    const double drift = nrm.dot(eb.frameBiasAcceleration(bb.frame, lb).tail<3>() -
+                                 ea.frameBiasAcceleration(ba.frame, la).tail<3>()) +
+                         collision::distanceCurvature(res, ba.shape.radius, bb.shape.radius, ma, mb);
     const double d = distance_[static_cast<std::size_t>(k)];
+    row_pair_[static_cast<std::size_t>(r)] = k;
     // A pair entering δi faster than ξ allows gets the damping that its entry speed needs (as
     // Tasks' CollisionConstr does), kept while it stays active: the row holds at q̈ = 0 then.
     const auto uk = static_cast<std::size_t>(k);
@@ -117,7 +133,8 @@ void CollisionConstraint::update(const MultiRobotProblem& p, ConstraintRows& out
         xi_[uk] = std::max(c.damping, -ddot * (c.interaction - c.security) / (d - c.security) + c.damping);
     }
     now_active_[uk] = 1;
-    out.l(r) = -xi_[uk] * (d - c.security) / (c.interaction - c.security) - ddot - dt * bias;
+    // d_{k+1} − d = Δt ḋ + Δt² (g q̈ + ½ D) ≥ −Δt ξ' e (collision_constraint.hpp).
+    out.l(r) = -xi_[uk] * (d - c.security) / (c.interaction - c.security) - ddot - 0.5 * dt * drift;
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     was_active_[k] = now_active_[k];

@@ -1,18 +1,25 @@
 // Collision avoidance between convex shapes carried by frames of one or two entities: the
 // velocity damper of eq. 21 written at the acceleration level as eq. 24. For a pair (A, B) with
 // signed distance d, witness points a ∈ A, b ∈ B and unit normal n = (b − a)/‖b − a‖
-// (control/collision/distance.hpp), once d < δi (interaction distance):
+// (control/collision/distance.hpp), once d < δi (interaction distance), with e = (d − δs)/(δi − δs):
 //
-//   ḋ + d̈ Δt ≥ −ξ (d − δs)/(δi − δs),   ḋ = nᵀ(J_b v − J_a v),   d̈ = nᵀ(J_b q̈ + J̇_b v − J_a q̈ − J̇_a v)
+//   ḋ = nᵀ(J_b v − J_a v),   d̈ = g q̈ + D,   g = nᵀ(J_b − J_a),
+//   D = nᵀ(J̇_b v − J̇_a v) + c   (c: the normal turning and the witnesses sliding, distance_rate.hpp)
 //
-// i.e. Δt nᵀ(J_b − J_a) q̈ ≥ −ξ (d − δs)/(δi − δs) − ḋ − Δt nᵀ(J̇_b v − J̇_a v), with J_a, J_b the
-// world-aligned linear Jacobians of the witness points (each on its own entity's columns; both on
-// the same columns for a self-collision pair). Pairs are tested first by their bounding balls
-// (collision/bounding_sphere.hpp); those within δi get an exact distance; at most `rows` of them,
-// the nearest to their security distance first, get a row; the other rows stay free. A pair that
-// enters δi approaching faster than ξ allows gets, until it leaves, the damping its entry speed
-// needs, ξ' = max(ξ, −ḋ (δi − δs)/(d − δs) + ξ) (Tasks' CollisionConstr does the same), so that
-// the row never starts infeasible.
+// The loop integrates by semi-implicit Euler (v ← v + Δt q̈, q ← q ⊕ Δt v), so over one step
+// d_{k+1} = d + Δt ḋ + Δt² (g q̈ + ½ D) + O(Δt³); the row asks d_{k+1} − d ≥ −Δt ξ e, i.e.
+//
+//   Δt g q̈ ≥ −ξ e − ḋ − ½ Δt D,
+//
+// eq. 24's ḋ + Δt d̈ ≥ −ξ e for that integration (read literally, with D counted whole, or with c
+// left out as in the paper, the bodies settle up to a few tenths of a millimetre inside δs:
+// docs/collision.md). J_a, J_b are the world-aligned linear Jacobians of the witness points (each
+// on its own entity's columns; both on the same columns for a self-collision pair). Pairs are
+// tested first by their bounding balls (collision/bounding_sphere.hpp); those within δi get an
+// exact distance; at most `rows` of them, the nearest to their security distance first, get a row;
+// the other rows stay free. A pair that enters δi approaching faster than ξ allows gets, until it
+// leaves, the damping its entry speed needs, ξ' = max(ξ, −ḋ (δi − δs)/(d − δs) + ξ) (Tasks'
+// CollisionConstr does the same), so that the row never starts infeasible.
 //
 // Real-time: update() is noexcept and allocation-free; shapes, pairs and Jacobian work space are
 // fixed at construction.
@@ -67,6 +74,10 @@ class CollisionConstraint final : public Constraint {
   double minDistance() const noexcept { return min_distance_; }
   /// Pairs given a row at the last update.
   int activeRows() const noexcept { return active_; }
+  /// The damping ξ' in use for pair k (set when it last entered δi).
+  double dampingInUse(int k) const noexcept { return xi_[static_cast<std::size_t>(k)]; }
+  /// The pair that row r (< activeRows()) constrained at the last update.
+  int rowPair(int r) const noexcept { return row_pair_[static_cast<std::size_t>(r)]; }
   /// Pairs within δi at the last update that did not get a row (more than `rows`).
   int droppedPairs() const noexcept { return dropped_; }
 
@@ -87,6 +98,7 @@ class CollisionConstraint final : public Constraint {
   std::vector<int> candidates_;
   std::vector<double> xi_;  ///< damping in use per pair (set on entry)
   std::vector<std::uint8_t> was_active_, now_active_;
+  std::vector<int> row_pair_;
   Eigen::MatrixXd Ja_, Jb_;
   double min_distance_ = std::numeric_limits<double>::infinity();
   int active_ = 0, dropped_ = 0;

@@ -57,7 +57,9 @@ Eigen::Vector3d worldCentre(const PlacedShape& s) { return s.R * s.shape->centre
 
 // ---- GJK on the cores ----
 struct Vertex {
-  Eigen::Vector3d w, a, b;  // w = b − a: a point of the Minkowski difference core_B − core_A
+  // w = b − a: a point of the Minkowski difference core_B − core_A
+  Eigen::Vector3d w = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double lambda = 1.0;  // barycentric weight in the simplex's closest point
 };
 
 struct Simplex {
@@ -126,7 +128,8 @@ void closestOnSimplex(Simplex& s, Eigen::Vector3d* v, Eigen::Vector3d* a, Eigen:
     *v += l * x.w;
     *a += l * x.a;
     *b += l * x.b;
-    r.v[static_cast<std::size_t>(r.n++)] = x;
+    r.v[static_cast<std::size_t>(r.n)] = x;
+    r.v[static_cast<std::size_t>(r.n++)].lambda = l;
   }
   s = r;
 }
@@ -145,6 +148,7 @@ bool penetration(const PlacedShape& A, const PlacedShape& B, DistanceResult* out
   ccd_real_t depth = 0.0;
   ccd_vec3_t dir, pos;
   out->penetrating = true;
+  out->simplex_size = 0;
   if (ccdMPRPenetration(&oa, &ob, &c, &depth, &dir, &pos) != 0) {
     out->distance = 0.0;
     const Eigen::Vector3d d = worldCentre(B) - worldCentre(A);
@@ -171,6 +175,7 @@ bool distance(const PlacedShape& A, const PlacedShape& B, DistanceResult* out) n
   s.v[0] = supportVertex(A, B, -d);
   s.n = 1;
   Eigen::Vector3d v = s.v[0].w, a = s.v[0].a, b = s.v[0].b;
+  Simplex at_v = s;  // the simplex whose closest point is v
   const double scale = 1.0 + A.shape->boundingRadius() + B.shape->boundingRadius() + d.norm();
   const double tiny = 1e-24 * scale * scale;
   out->penetrating = false;
@@ -192,6 +197,7 @@ bool distance(const PlacedShape& A, const PlacedShape& B, DistanceResult* out) n
     v = vn;
     a = an;
     b = bn;
+    at_v = s;
   }
   out->iterations = it;
   const double dc = v.norm();
@@ -202,6 +208,13 @@ bool distance(const PlacedShape& A, const PlacedShape& B, DistanceResult* out) n
   out->a = a + ra * n;
   out->b = b - rb * n;
   out->distance = dc - ra - rb;
+  out->simplex_size = at_v.n <= 3 ? at_v.n : 0;
+  for (int i = 0; i < out->simplex_size; ++i) {
+    const auto ui = static_cast<std::size_t>(i);
+    out->simplex_a[ui] = at_v.v[ui].a;
+    out->simplex_b[ui] = at_v.v[ui].b;
+    out->simplex_lambda[ui] = at_v.v[ui].lambda;
+  }
   return true;
 }
 

@@ -16,6 +16,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+
 #include "collision/shape.hpp"
 
 namespace mrqp::collision {
@@ -27,6 +29,12 @@ struct DistanceResult {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< unit, from A towards B
   bool penetrating = false;                           ///< the cores overlap: libccd's MPR answered
   int iterations = 0;                                 ///< GJK iterations
+  /// GJK's final simplex (separated results; size 0 when penetrating): the witnesses on the cores
+  /// are Σ λ_i simplex_a[i] and Σ λ_i simplex_b[i], vertices of the cores (world). The distance's
+  /// second derivative goes through it (distance_rate.hpp).
+  int simplex_size = 0;
+  std::array<Eigen::Vector3d, 3> simplex_a{}, simplex_b{};
+  std::array<double, 3> simplex_lambda{};
 };
 
 /// Signed distance between A and B with witness points. False only when libccd's MPR fails on

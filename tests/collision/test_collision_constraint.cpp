@@ -1,10 +1,11 @@
 // The `collisions` constraint kind in scenes (docs/collision.md): pair selection (adjacent links
-// and SRDF-disabled pairs left out), the row of eq. 24 against finite differences of the distance,
-// (ḋ; d̈ is reported), and two Panda arms from random separated starts, driven into each other: every QP stays
-// feasible and the arms stay apart (distance measured apart from the constraint, exactly, over
-// every pair).
+// and SRDF-disabled pairs left out), ḋ and d̈ of the witness model against finite differences of the
+// exact distance, the row against one step of the loop's integration, and two Panda arms from
+// random separated starts, driven into each other: every QP stays feasible and the arms stay apart
+// (distance measured apart from the constraint, exactly, over every pair).
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "collision/collision_constraint.hpp"
+#include "collision/distance_rate.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
@@ -85,7 +87,7 @@ TEST_CASE("collision: Self-collision pairs leave out adjacent links and the SRDF
   CHECK(collisionOf(s, "arms").pairCount() == 13 * 13);
 }
 
-TEST_CASE("collision: The damper row is eq. 24: ḋ from the witness Jacobians matches finite differences",
+TEST_CASE("collision: ḋ and d̈ of the witness model (curvature included) match finite differences",
           "[collision]") {
   mrqp::scene::Scene s = loadText(kTwoPandas);
   auto& p = *s.problem;
@@ -141,7 +143,7 @@ TEST_CASE("collision: The damper row is eq. 24: ḋ from the witness Jacobians m
                               mrqp::collision::place(bb.shape, fb.R, fb.p), &r);
   }
   auto pointTerms = [&](const mrqp::problem::CollisionBody& b, const Eigen::Vector3d& w, double* vel,
-                        double* acc) {
+                        double* acc, mrqp::collision::RigidMotion* m) {
     const auto& e = p.entity(b.entity);
     const auto f = e.framePose(b.frame);
     const Eigen::Vector3d l = f.R.transpose() * (w - f.p);
@@ -150,14 +152,141 @@ TEST_CASE("collision: The damper row is eq. 24: ḋ from the witness Jacobians m
     *vel = r.normal.dot(J.bottomRows<3>() * e.v());
     *acc = r.normal.dot(J.bottomRows<3>() * a[static_cast<std::size_t>(b.entity)] +
                         e.frameBiasAcceleration(b.frame, l).tail<3>());
+    m->omega = J.topRows<3>() * e.v();
+    m->v = J.bottomRows<3>() * e.v();
+    m->at = w;
   };
   double va, aa, vb, ab;
-  pointTerms(ba, r.a, &va, &aa);
-  pointTerms(bb, r.b, &vb, &ab);
+  mrqp::collision::RigidMotion ma, mb;
+  pointTerms(ba, r.a, &va, &aa, &ma);
+  pointTerms(bb, r.b, &vb, &ab, &mb);
   CHECK(vb - va == Approx(ddot_fd).margin(1e-5));
-  // d̈ of the witness-point model leaves out the curvature terms (ṅ, the witnesses sliding over
-  // the capsules), which eq. 24 neglects as well: reported, not checked.
-  WARN("d̈ of the witness model " << (ab - aa) << ", finite differences " << dddot_fd);
+  // d̈ = nᵀ(acc_b − acc_a) + c: the witnesses' accelerations alone leave out c (ṅ, the witnesses
+  // sliding over the capsules), which is not small here.
+  const double c_term = mrqp::collision::distanceCurvature(r, ba.shape.radius, bb.shape.radius, ma, mb);
+  INFO("witness part " << (ab - aa) << ", curvature " << c_term << ", finite differences " << dddot_fd);
+  CHECK(ab - aa + c_term == Approx(dddot_fd).margin(1e-4));
+  CHECK(std::abs(ab - aa - dddot_fd) > 1e-2);
+}
+
+TEST_CASE("collision: The row is the damper over one step of the loop's semi-implicit Euler integration",
+          "[collision]") {
+  // two_arms run until the arms are within δi, then random velocities and accelerations x. For each
+  // row, C x − l = Δt g·q̈ + ξ' e + ḋ + ½ Δt D must equal ξ' e + (d_{k+1} − d_k)/Δt, where d_{k+1} is
+  // the exact distance after the step v ← v + Δt q̈, q ← q ⊕ Δt v, up to the step's third-order
+  // term Δt² d'''/6 (d''' from the third difference of the exact distance along that step's path).
+  // Rows whose nearest features change within the step (d not smooth there: the witness jumps, or
+  // d''' is huge) are left out and counted. Measured: median error 2e-7 m/s, 99 % below 3e-6, while
+  // ½ Δt D is 1e-3 m/s (median).
+  mrqp::scene::ModelRegistry models;
+  mrqp::scene::addBuiltinModels(models);
+  mrqp::scene::Scene s = mrqp::scene::loadScene(std::string(MRQP_SCENES_DIR) + "/two_arms.yaml", models);
+  auto& p = *s.problem;
+  auto& c = dynamic_cast<CollisionConstraint&>(p.constraint(s.constraints.at("arms")));
+  const double dt = s.settings.dt;
+  for (int cycle = 0; cycle < 3000 && c.measureMinDistance(p) > 0.06; ++cycle) {
+    p.update();
+    REQUIRE(p.solve() == QpStatus::Optimal);
+    for (int i = 0; i < p.entityCount(); ++i) p.entity(i).integrate(p.acceleration(i), dt);
+    for (int i = 0; i < p.entityCount(); ++i) p.entity(i).update();
+  }
+  REQUIRE(c.measureMinDistance(p) <= 0.06);
+  const int nx = p.velocityOffset(1) + p.entity(1).nv();
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<Eigen::VectorXd> q0, v0;
+  for (int i = 0; i < p.entityCount(); ++i) {
+    q0.push_back(p.entity(i).q());
+    v0.push_back(p.entity(i).v());
+  }
+  const auto place = [&](int body) {
+    const auto& bd = c.body(body);
+    const auto f = p.entity(bd.entity).framePose(bd.frame);
+    return mrqp::collision::place(bd.shape, f.R, f.p);
+  };
+  int checked = 0, skipped = 0, discriminating = 0, outside = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Eigen::VectorXd> q_start, v_start;
+    for (int i = 0; i < p.entityCount(); ++i) {
+      // The scene is mirror-symmetric: a small random offset of q breaks the exact ties (parallel
+      // capsules) that its symmetric states have.
+      p.entity(i).q() = q0[static_cast<std::size_t>(i)];
+      p.entity(i).q().head(7) += 0.01 * Eigen::VectorXd::NullaryExpr(7, [&]() { return n(rng); });
+      p.entity(i).v() = v0[static_cast<std::size_t>(i)] +
+                        0.3 * Eigen::VectorXd::NullaryExpr(p.entity(i).nv(), [&]() { return n(rng); });
+      p.entity(i).update();
+      q_start.push_back(p.entity(i).q());
+      v_start.push_back(p.entity(i).v());
+    }
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(c.inequalityRows(), nx), A(0, nx);
+    Eigen::VectorXd l = Eigen::VectorXd::Constant(c.inequalityRows(), -1e30), u = -l, b(0);
+    mrqp::problem::ConstraintRows rows{C, l, u, A, b};
+    c.update(p, rows);
+    REQUIRE(c.activeRows() > 0);
+    // Small accelerations: the row is linear in q̈, the step is not (its Δt² vᵀ∇²d q̈ term).
+    const Eigen::VectorXd x = 0.1 * Eigen::VectorXd::NullaryExpr(nx, [&]() { return n(rng); });
+    // The rows' pairs along the step's path q ⊕ τ (v + Δt x), τ = −Δt … 3Δt (τ = Δt is the
+    // integration step itself).
+    const int nr = c.activeRows();
+    std::vector<std::array<mrqp::collision::DistanceResult, 5>> path(static_cast<std::size_t>(nr));
+    for (int j = 0; j < 5; ++j) {
+      for (int i = 0; i < p.entityCount(); ++i) {
+        auto& e = p.entity(i);
+        e.q() = q_start[static_cast<std::size_t>(i)];
+        e.v() = v_start[static_cast<std::size_t>(i)] + dt * x.segment(p.velocityOffset(i), e.nv());
+        e.integrate(Eigen::VectorXd::Zero(e.nv()), (j - 1) * dt);
+        e.update();
+      }
+      for (int r = 0; r < nr; ++r) {
+        const auto& pr = c.pair(c.rowPair(r));
+        mrqp::collision::distance(place(pr.a), place(pr.b),
+                                  &path[static_cast<std::size_t>(r)][static_cast<std::size_t>(j)]);
+      }
+    }
+    for (int r = 0; r < nr; ++r) {
+      const int k = c.rowPair(r);
+      const auto& pr = c.pair(k);
+      const auto& dd = path[static_cast<std::size_t>(r)];
+      const double before = dd[0].distance;
+      const auto* d = dd.data() + 1;  // d[j]: τ = j Δt
+      CHECK(c.lastDistance(k) == Approx(d[0].distance).margin(1e-12));
+      const double d3 =
+          (d[3].distance - 3 * d[2].distance + 3 * d[1].distance - d[0].distance) / (dt * dt * dt);
+      const bool jump = (d[1].a - d[0].a).norm() > 2e-3 || (d[1].b - d[0].b).norm() > 2e-3;
+      const double d3_back =
+          (d[2].distance - 3 * d[1].distance + 3 * d[0].distance - before) / (dt * dt * dt);
+      if (jump || (dd[0].a - d[0].a).norm() > 2e-3 || (dd[0].b - d[0].b).norm() > 2e-3 ||
+          std::abs(d3) > 1e3 || std::abs(d3_back) > 1e3) {
+        ++skipped;
+        continue;
+      }
+      const double rate = (d[1].distance - d[0].distance) / dt;
+      const double slack = (C.row(r) * x)(0) - l(r);
+      const double damper =
+          c.dampingInUse(k) * (d[0].distance - pr.security) / (pr.interaction - pr.security);
+      const double third = dt * dt * d3 / 6.0;
+      const double tolerance = 1e-5 + std::abs(third);
+      if (std::abs(slack - damper - rate + third) > tolerance) {
+        ++outside;
+        WARN("outside the tolerance: " << slack - damper - rate + third << " m/s");
+      }
+      ++checked;
+      // The drift's share of the row, ½ Δt D (D from the path's second difference): a row with D
+      // counted once (ḋ + Δt d̈ read literally) or left out would be off by that much.
+      const double half_drift = 0.5 * (d[2].distance - 2 * d[1].distance + d[0].distance) / dt;
+      if (std::abs(half_drift) > 5 * tolerance) ++discriminating;
+      worst = std::max(worst, std::abs(slack - damper - rate + third));
+    }
+  }
+  CHECK(checked >= 100);
+  CHECK(skipped <= checked / 4);
+  CHECK(discriminating >= checked / 2);
+  // A row near a change of features that the filter above misses can be off by more: at most 1 %.
+  CHECK(outside <= checked / 100);
+  WARN(checked << " rows checked (" << skipped << " left out: features changing within the step; "
+               << discriminating << " where ½ Δt D exceeds 5 × the tolerance); worst |row − step| " << worst
+               << " m/s");
 }
 
 TEST_CASE("collision: Two arms driven into each other from random separated starts: feasible, apart",
@@ -197,6 +326,8 @@ TEST_CASE("collision: Two arms driven into each other from random separated star
     CHECK(dmin > 0.0);
   }
   CHECK(runs >= 4);
+  // The capsule pairs stop at δs to the bound of the shipped two_arms scene (below).
+  CHECK(worst >= 0.03 - 5e-5);
   WARN(runs << " random starts; smallest distance between the arms " << worst << " m (δs = 0.03)");
 }
 
@@ -243,18 +374,23 @@ collisions:
                  bad + ":3: links.panda_link1[0]: expected exactly one of sphere, capsule, box, hull"));
 }
 
-TEST_CASE("collision: the shipped scenes stop the bodies at δs (to the row's curvature gap)", "[collision]") {
-  // The gap below δs that the row's neglected curvature allows, Δt |c| (δi − δs)/ξ with |c| up to
-  // 2 m/s² (docs/collision.md): 0.35 mm for two_arms, 0.4 mm for self_collision; 0.5 mm accepted.
-  constexpr double kGap = 5e-4;
+TEST_CASE("collision: the shipped scenes stop the bodies at δs", "[collision]") {
+  // two_arms (capsules): the row is the damper over the integration step to third order, so the
+  // arms stop at δs to Δt² |d'''| (δi − δs)/ξ, micrometres (measured 0.5 µm below δs); 0.05 mm is
+  // accepted, a third of what a row without the curvature terms, or with the drift counted
+  // whole, gives (0.14 mm). self_collision (boxes): the hand's box meets the chest's box along a
+  // face or an edge, where the witness points are not unique and jump between cycles; one row per
+  // pair holds the witness it was given, not the whole contact: measured 0.17 mm below δs, 0.25 mm
+  // accepted (docs/collision.md).
   struct Case {
     const char* file;
     const char* constraint;
     const char* task;
     double min_task_error;  // the task's target lies past the obstacle
+    double gap;             // accepted distance below δs
   };
-  for (const Case& k : {Case{"two_arms.yaml", "arms", "left_reach", 0.1},
-                        Case{"self_collision.yaml", "hand_torso", "hand", 0.01}}) {
+  for (const Case& k : {Case{"two_arms.yaml", "arms", "left_reach", 0.1, 5e-5},
+                        Case{"self_collision.yaml", "hand_torso", "hand", 0.01, 2.5e-4}}) {
     INFO(k.file);
     mrqp::scene::ModelRegistry models;
     mrqp::scene::addBuiltinModels(models);
@@ -270,7 +406,7 @@ TEST_CASE("collision: the shipped scenes stop the bodies at δs (to the row's cu
       for (int i = 0; i < p.entityCount(); ++i) p.entity(i).update();
       dmin = std::min(dmin, c.measureMinDistance(p));
     }
-    CHECK(dmin >= security - kGap);
+    CHECK(dmin >= security - k.gap);
     CHECK(dmin <= security + 0.01);  // the bodies did come close: the constraint was what stopped them
     CHECK(p.taskError(s.task(k.task)).norm() > k.min_task_error);
     WARN(k.file << ": smallest distance " << dmin << " m, δs " << security << " m");
