@@ -35,6 +35,7 @@
 #include "loop/scene_override.hpp"
 #include "loop/timeline.hpp"
 #include "motion_track.hpp"
+#include "pen_click_watch.hpp"
 #include "plant_factory.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
@@ -208,6 +209,7 @@ int runMain(int argc, char** argv) {
   if (cycles <= 0) cycles = std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt);
   std::vector<double> cycle_us(static_cast<std::size_t>(cycles), 0.0);
   run::MotionTrack motion(*plant, p, static_cast<double>(cycles) * dt, 30.0);
+  run::PenClickWatch pen_watch(spec, models, p, *plant, cycles);  // a pen scene's fields (docs/scenes.md)
 #ifdef MRQP_RUN_HAVE_COLLISION
   // summary.json's min_distance_m: every collision pair measured on the plant's state between
   // cycles, on a second problem of the scene (docs/collision.md).
@@ -285,6 +287,7 @@ int runMain(int argc, char** argv) {
 #ifdef MRQP_RUN_HAVE_COLLISION
     watch.measure(plantState);
 #endif
+    pen_watch.measure(static_cast<double>(k) * dt);
     if (o.plots && motion.due(static_cast<double>(k) * dt)) motion.capture(static_cast<double>(k) * dt);
     if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
     const drivers::TimeNs total = ctrl.lastTiming().total_ns;
@@ -353,9 +356,12 @@ int runMain(int argc, char** argv) {
     s.delta_s_m = watch.securityDistance();
   }
 #endif
+  s.extra_fields = pen_watch.summaryFields();
   if (!run::writeSummaryJson(s, o.out + "/summary.json"))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
   run::printSummary(s);
+  for (const std::string& f : pen_watch.write(o.out, o.plots, nullptr))
+    std::printf("mrqp-run: wrote %s\n", f.c_str());
   if (o.plots) {
     std::string err;
     const std::vector<std::string> pngs = run::writePlots(o.out, ring.columns(), o.scene, &err);

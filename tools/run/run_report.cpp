@@ -63,22 +63,25 @@ bool writeSummaryJson(const RunSummary& s, const std::string& path) {
               ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + "}";
   }
   faults += s.faults.empty() ? "]" : "\n  ]";
-  const std::string collision = std::isfinite(s.min_distance_m) ? ",\n  \"min_distance_m\": " + num(s.min_distance_m) +
-                                                                      ",\n  \"delta_s_m\": " + num(s.delta_s_m)
-                                                                : std::string();
+  const std::string collision =
+      std::isfinite(s.min_distance_m)
+          ? ",\n  \"min_distance_m\": " + num(s.min_distance_m) + ",\n  \"delta_s_m\": " + num(s.delta_s_m)
+          : std::string();
+  std::string extra;  // a scene's own fields (e.g. pen_click_watch.hpp), after the common ones
+  for (const auto& [name, value] : s.extra_fields) extra += ",\n  " + quoted(name) + ": " + value;
   std::fprintf(f,
                "{\n  \"scene\": %s,\n  \"cycles\": %ld,\n  \"period_s\": %s,\n  \"deadline_misses\": %ld,\n"
                "  \"allocations_in_loop\": %ld,\n  \"log_records_dropped\": %ld,\n"
                "  \"cycle_time_us\": {\"median\": %s, \"p99\": %s, \"p999\": %s, \"max\": %s},\n"
                "  \"safe_stop\": %s,\n  \"task_errors_final\": %s,\n  \"joint_tracking_error_max_rad\": %s,\n"
-               "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s%s\n}\n",
+               "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s%s%s\n}\n",
                quoted(s.scene).c_str(), s.cycles, num(s.period_s).c_str(), s.deadline_misses,
                s.allocations_in_loop, s.log_records_dropped, num(s.median_us).c_str(), num(s.p99_us).c_str(),
                num(s.p999_us).c_str(), num(s.max_us).c_str(),
                s.safe_stop.empty() ? "null" : quoted(s.safe_stop).c_str(),
                object(s.task_errors_final).c_str(), object(s.joint_tracking_error_max_rad).c_str(),
                object(s.base_estimate_error_m).c_str(), object(s.bus_load).c_str(), faults.c_str(),
-               collision.c_str());
+               collision.c_str(), extra.c_str());
   return std::fclose(f) == 0;
 }
 

@@ -29,6 +29,7 @@ struct RunSummary {
   /// state, and the smallest security distance δs; NaN (left out of the file) without collisions.
   double min_distance_m = std::numeric_limits<double>::quiet_NaN();
   double delta_s_m = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::pair<std::string, std::string>> extra_fields;  ///< a scene's own: name → JSON value text
 };
 
 /// Percentile p (0..1) of sorted values (nearest rank).
