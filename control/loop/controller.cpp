@@ -59,6 +59,7 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
   for (auto& r : routers_) routers.push_back(r.get());
   for (std::size_t r = 0; r < hw.robots.size(); ++r) {
     robots_.push_back(makeRobotIo(hw, r, problem_.entity(hw.robots[r].entity), routers, dt_));
+    commanded_.push_back(hw.robots[r].state == JointState::Commanded ? 1 : 0);
   }
   if (options_.contact_estimation) {
     std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
@@ -184,6 +185,7 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
   for (RobotIo& r : robots_) {
     if (!robotCycle(r)) continue;
     problem::Entity& e = problem_.entity(r.entity);
+    const bool commanded = commanded_[static_cast<std::size_t>(&r - robots_.data())] != 0u;
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       const JointIo& j = r.joints[i];
       const drivers::JointFeedback fb = j.device->joint(j.index);
@@ -208,12 +210,15 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       r.q_meas[i] = fb.position;
       r.v_meas[i] = fb.velocity;
       // The feedback was sampled at the SYNC that carried the previous setpoint: correct the
-      // state predicted since then by what the joint did differently from that setpoint.
+      // state predicted since then by what the joint did differently from that setpoint
+      // (state: measured). A robot whose state is its command keeps the prediction: its encoders
+      // are checked (above) and logged, and its tracking error is recorded.
       const double dq = fb.position - r.q_sent[i];
       const double dv = fb.velocity - r.v_sent[i];
       if (cycle_ > 0) {
         r.tracking_error_max = std::max(r.tracking_error_max, std::fabs(dq));
       }
+      if (commanded) continue;
       e.q()(j.q_index) += dq;
       e.v()(j.v_index) += dv;
     }

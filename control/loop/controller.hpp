@@ -4,7 +4,9 @@
 //   estimate()  q, q̇ of every robot from its drives: on the robot's cycles the state the
 //               controller predicted (integrated from its q̈) is corrected by what each joint did
 //               differently from its last setpoint (the feedback is sampled at the SYNC that
-//               carried it: one robot cycle old); entities without hardware keep the prediction
+//               carried it: one robot cycle old); a robot with `state: commanded` keeps its
+//               integrated command (a position-controlled robot: encoders checked, not fed
+//               back); floating bases, objects and mechanisms from contact kinematics
 //   hooks       a fixed-capacity list of CycleHook (the estimator and the admittance plug in here)
 //   update()    MultiRobotProblem::update
 //   solve()     MultiRobotProblem::solve
@@ -141,6 +143,7 @@ class Controller {
   int feedback_missing_cycles_;
   std::vector<std::unique_ptr<drivers::BusRouter>> routers_;
   std::vector<RobotIo> robots_;
+  std::vector<std::uint8_t> commanded_;  ///< per robot: state: commanded (no feedback correction)
   std::unique_ptr<ContactEstimator> estimator_;
   std::array<CycleHook*, kMaxHooks> hooks_{};
   int hook_count_ = 0;

@@ -74,6 +74,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rr.divisor = rh.divisor;
     rr.safe_stop = rh.safe_stop;
     rr.hold_damping = rh.hold_damping;
+    rr.state = rh.state;
     if (rr.entity < 0) {
       fail(rh.source, robotField(r, "entity"), "unknown entity '" + rh.entity + "'");
     }

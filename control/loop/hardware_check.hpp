@@ -45,6 +45,7 @@ struct ResolvedRobot {
   int divisor = 1;
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
+  JointState state = JointState::Measured;
   std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
   std::vector<ResolvedDrive> impedance;  ///< MIT motors and FD board joints, in the order of the file
   std::vector<ResolvedSensor> ft_sensors;

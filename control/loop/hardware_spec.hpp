@@ -55,11 +55,17 @@ struct SensorDecl {
 
 enum class SafeStop : std::uint8_t { Hold = 0, QuickStop };
 
+/// Where the controller's joint state of a robot comes from (docs/loop.md, "The cycle"): its
+/// drives' feedback (the prediction corrected by measured − sent), or its own integrated command
+/// (a position-controlled robot: the encoders are checked and logged, not fed back).
+enum class JointState : std::uint8_t { Measured = 0, Commanded };
+
 struct RobotHardware {
   std::string entity;
   int divisor = 1;  ///< the robot's cycle = the loop's period × divisor
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;  ///< 1/s: hold decays the commanded velocity by this rate
+  JointState state = JointState::Measured;
   std::vector<Cia402Group> cia402;
   std::vector<ImpedanceGroup> impedance;
   std::vector<SensorDecl> ft_sensors;

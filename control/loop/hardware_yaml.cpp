@@ -116,9 +116,9 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 }
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(
-      r, n, path,
-      {"entity", "divisor", "safe_stop", "hold_damping", "cia402", "mit", "fd", "ft_sensors", "imus"});
+  const Map m(r, n, path,
+              {"entity", "divisor", "safe_stop", "hold_damping", "state", "cia402", "mit", "fd", "ft_sensors",
+               "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);
@@ -133,6 +133,16 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
     }
   }
   rh.hold_damping = m.number("hold_damping", Bound::NonNegative, 1.0);
+  if (const YAML::Node* s = m.find("state")) {
+    const std::string v = r.name(*s, m.at("state"));
+    if (v == "measured") {
+      rh.state = JointState::Measured;
+    } else if (v == "commanded") {
+      rh.state = JointState::Commanded;
+    } else {
+      r.fail(*s, m.at("state"), "expected measured or commanded, got \"" + v + "\"");
+    }
+  }
   auto each = [&](const char* key, auto read) {
     if (const YAML::Node* l = m.find(key)) {
       const std::vector<YAML::Node> items = r.list(*l, m.at(key));
