@@ -70,6 +70,7 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
     }
     estimator_ = std::make_unique<ContactEstimator>(problem_, measured, imu_frame);
   }
+  initSafety(hw);
 }
 
 bool Controller::addHook(CycleHook& hook) noexcept {
@@ -140,6 +141,7 @@ void Controller::trip(StopReason reason, std::uint32_t flags, const std::string*
   stop_device_ = device;
   stop_cycle_ = cycle_;
   stop_time_ = now - start_;
+  enterSafeState(now);
 }
 
 void Controller::read(drivers::TimeNs now) noexcept {
@@ -160,23 +162,7 @@ void Controller::read(drivers::TimeNs now) noexcept {
           flag_first_[static_cast<std::size_t>(b)] = now - start_;
         }
       }
-      if ((flags & fatal_) != 0u) {
-        // The first device with a fatal flag names the fault.
-        const std::string* where = &r.name;
-        for (std::size_t i = 0; i < rep.device_count && where == &r.name; ++i) {
-          if ((rep.devices[i].flags & fatal_) == 0u) continue;
-          for (const JointIo& j : r.joints) {
-            if (j.device == d.get() && j.index == i) where = &j.name;
-          }
-          for (const SensorIo& s : r.ft_sensors) {
-            if (s.device == d.get() && s.index == i) where = &s.name;
-          }
-          for (const SensorIo& s : r.imus) {
-            if (s.device == d.get() && s.index == i) where = &s.name;
-          }
-        }
-        trip(StopReason::DriverFault, flags & fatal_, where, now);
-      }
+      onDeviceFaults(r, *d, rep, flags, now);
     }
   }
 }
@@ -194,11 +180,11 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       // options_.loss_window cycles, may not exceed options_.loss_limit.
       r.miss_rate[i] += ((missing ? 1.0 : 0.0) - r.miss_rate[i]) / options_.loss_window;
       if (r.miss_rate[i] > options_.loss_limit) {
-        trip(StopReason::StaleSensor, fault::kSampleLost, &j.name, now);
+        staleJoint(r, i, fault::kSampleLost, now);
       }
       if (missing) {
         if (++r.stale[i] > static_cast<std::uint32_t>(feedback_missing_cycles_)) {
-          trip(StopReason::StaleSensor, fault::kFeedbackMissing, &j.name, now);
+          staleJoint(r, i, fault::kFeedbackMissing, now);
         }
         continue;
       }
@@ -302,7 +288,9 @@ void Controller::remember(RobotIo& r, std::size_t i) noexcept {
 void Controller::writeSafe(drivers::TimeNs now) noexcept {
   for (RobotIo& r : robots_) {
     problem::Entity& e = problem_.entity(r.entity);
-    const double decay = std::max(0.0, 1.0 - r.hold_damping * dt_);
+    // While the recovery policy brings a drive back every robot stands still where it is (a drive
+    // that dropped out no longer follows: moving the others would strain a closed chain).
+    const double decay = recovering_ ? 0.0 : std::max(0.0, 1.0 - r.hold_damping * dt_);
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       const JointIo& j = r.joints[i];
       if (j.torque) {
@@ -316,10 +304,8 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
       e.v()(j.v_index) = r.v_cmd[i];
     }
     if (!robotCycle(r)) continue;
-    if (r.safe_stop == SafeStop::QuickStop) {
-      if (!quick_stop_sent_) {
-        for (auto& d : r.devices) d->requestQuickStop(now);
-      }
+    if (stop_ != StopReason::None && r.safe_stop == SafeStop::QuickStop) {
+      // The quick stop was requested in the cycle that tripped (enterSafeState).
     } else {
       for (std::size_t i = 0; i < r.joints.size(); ++i) {
         const JointIo& j = r.joints[i];
@@ -333,7 +319,6 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
     }
     for (auto& d : r.devices) d->transmit(now);
   }
-  quick_stop_sent_ = true;
 }
 
 void Controller::cycle(drivers::TimeNs now) noexcept {
@@ -344,11 +329,12 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
   const drivers::TimeNs t0 = drivers::monotonicNow();
   read(now);
   const drivers::TimeNs t1 = drivers::monotonicNow();
-  if (stop_ == StopReason::None) estimate(now);
+  stepLoopRecovery(now);
+  if (stop_ == StopReason::None) estimate(now);  // also while recovering: the held state follows the drives
   for (int h = 0; h < hook_count_; ++h) hooks_[static_cast<std::size_t>(h)]->onCycle(*this, now);
   const drivers::TimeNs t2 = drivers::monotonicNow();
   drivers::TimeNs t3 = t2, t4 = t2;
-  if (stop_ == StopReason::None) {
+  if (stop_ == StopReason::None && !recovering_) {
     if (problem_.update() != problem::UpdateStatus::Ok) {
       trip(StopReason::NonFinite, 0, nullptr, now);
     }
@@ -363,7 +349,7 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
     }
     t4 = drivers::monotonicNow();
   }
-  if (stop_ == StopReason::None) {
+  if (stop_ == StopReason::None && !recovering_) {
     write(now);
   } else {
     writeSafe(now);

@@ -27,6 +27,7 @@
 #include "force/force_control_yaml.hpp"
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
+#include "loop/device_lifecycle.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/fault_injector.hpp"
 #include "loop/hardware_check.hpp"
@@ -258,19 +259,12 @@ int runMain(int argc, char** argv) {
     const drivers::TimeNs deadline = paced ? clock.wait() : 0;
     return sim ? now + period : deadline;
   };
-  ctrl.startDevices(now);
-  long boot = 0;
-  const long boot_limit = std::lround(10.0 / dt);
-  for (;; ++boot) {
-    if (boot >= boot_limit) {
-      throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
-                               flagNames(ctrl.bootFlags()) + ")");
-    }
-    const bool ready = ctrl.bootCycle(now);
-    if (rig) rig->advanceTo(now + period);
-    now = next();
-    if (ready) break;
+  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), 10.0, next);
+  if (!booted.done) {
+    throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
+                             flagNames(booted.flags) + ")");
   }
+  const long boot = booted.cycles;
   if (!o.quiet)
     std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
 
@@ -313,6 +307,13 @@ int runMain(int argc, char** argv) {
   if (paced) misses = static_cast<long>(clock.overruns() - overruns0);
   writer.stop();
   const double loop_s = static_cast<double>(now - loop_start) * 1e-9;
+  std::vector<std::uint64_t> busy1;
+  if (rig) {
+    for (std::size_t b = 0; b < rig->busCount(); ++b)
+      busy1.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
+  }
+  // ---- the safe exit: the drives stopped and left in the NMT state of hardware.safe_exit ----
+  const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
 
   // ---- summary ----
   run::RunSummary s;
@@ -351,12 +352,34 @@ int runMain(int argc, char** argv) {
   for (std::size_t b = 0; b < rh.buses.size(); ++b) {
     double load = rh.buses[b].utilisation_worst;
     if (rig && loop_s > 0.0) {
-      load = static_cast<double>(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns) - busy0[b]) * 1e-9 /
-             loop_s;
+      load = static_cast<double>(busy1[b] - busy0[b]) * 1e-9 / loop_s;
     }
     s.bus_load.emplace_back(rh.buses[b].decl.name, load);
   }
   s.faults = faults.records();
+  // The drivers' own text: what stopped the controller, every fault event, each injected fault's.
+  s.safe_stop_driver = ctrl.stopDescription();
+  for (std::size_t i = 0; i < ctrl.faultEventCount(); ++i) {
+    const loop::Controller::FaultEvent& e = ctrl.faultEvent(i);
+    char at[64];
+    std::snprintf(at, sizeof at, "t = %.4f s (cycle %llu) ", static_cast<double>(e.t) * 1e-9,
+                  static_cast<unsigned long long>(e.cycle));
+    s.fault_events.push_back(at + *e.where + ": " + loop::Controller::describe(e));
+  }
+  for (const loop::FaultRecord& r : s.faults) {
+    std::string on_device;
+    for (std::size_t i = 0; i < ctrl.faultEventCount(); ++i) {
+      const loop::Controller::FaultEvent& e = ctrl.faultEvent(i);
+      if (*e.where != r.device || r.injected_at_s < 0.0 ||
+          static_cast<double>(e.t) * 1e-9 + 1e-9 < r.injected_at_s)
+        continue;
+      on_device += (on_device.empty() ? "" : "; ") + loop::Controller::describe(e);
+    }
+    s.fault_driver_text.push_back(on_device);
+  }
+  s.safe_exit_done = exited.done;
+  s.safe_exit_cycles = exited.cycles;
+  if (!run::writeFaultLog(s, o.out + "/faults.log")) throw std::runtime_error(o.out + "/faults.log: cannot write");
 #ifdef MRQP_RUN_HAVE_COLLISION
   if (watch.enabled()) {
     s.min_distance_m = watch.minDistance();
