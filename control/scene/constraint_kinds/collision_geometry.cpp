@@ -5,7 +5,6 @@
 
 #include <fstream>
 
-#include "collision/geometry_path.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_reader.hpp"
@@ -84,6 +83,15 @@ collision::ShapeSet readCollisionGeometryFile(const std::string& path) {
   return readCollisionGeometryString(readTextFile(path), path);
 }
 
-std::string builtinCollisionGeometry(const std::string& model) { return collision::findGeometryFile(model); }
+std::string builtinCollisionGeometry(const std::string& model) {
+#ifdef MRQP_COLLISION_GEOMETRY_DIR
+  const std::string path = std::string(MRQP_COLLISION_GEOMETRY_DIR) + "/" + model + ".yaml";
+  std::ifstream f(path);
+  if (f) return path;
+#else
+  (void)model;
+#endif
+  return "";
+}
 
 }  // namespace mrqp::scene

@@ -1,0 +1,69 @@
+#!/usr/bin/env python3
+"""Runs mrqp-run on the carry_box scene with and without force control and checks the outcome
+from summary.json (docs/force-control.md, "carry_box").
+
+Usage: run_carry_box.py MRQP_RUN SCENE OUT_DIR PLANT TOLERANCE_M SLIP_M WITHOUT
+  PLANT        ideal or mujoco
+  TOLERANCE_M  largest distance of the plant's box to each waypoint at its time (with force control)
+  SLIP_M       largest displacement of the box in a hand frame (with force control)
+  WITHOUT      what the run without force control shows on this plant: "follows" (the same
+               tolerances hold, as on the ideal plant, where nothing can slip) or "slips" (the box
+               is dropped or misses a waypoint by more than the tolerance)
+Both runs: exit status 0, no safe stop, no allocation in the loop, `force_control` as asked, one
+error per waypoint.
+"""
+import json
+import subprocess
+import sys
+
+
+def run(mrqp_run, scene, out, plant, force_control):
+    cmd = [mrqp_run, scene, "--plant", plant, "--out", out, "--no-plots", "--quiet"]
+    if not force_control:
+        cmd.append("--no-force-control")
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    sys.stdout.write(proc.stdout)
+    sys.stderr.write(proc.stderr)
+    with open(out + "/summary.json", encoding="utf-8") as f:
+        return proc.returncode, json.load(f)
+
+
+def main() -> int:
+    if len(sys.argv) != 8:
+        print(__doc__, file=sys.stderr)
+        return 2
+    mrqp_run, scene, out, plant, tol, slip_max, without = sys.argv[1:8]
+    tol, slip_max = float(tol), float(slip_max)
+    failures = []
+    for fc in (True, False):
+        name = "with force control" if fc else "without force control"
+        code, s = run(mrqp_run, scene, f"{out}/{'fc' if fc else 'no_fc'}", plant, fc)
+        errors = s.get("box_waypoint_errors_m")
+        print(f"run_carry_box: {name}: waypoint errors {errors}, slip {s.get('box_slip_m')}, "
+              f"dropped {s.get('box_dropped')}, safe stop {s['safe_stop']}")
+        if code != 0:
+            failures.append(f"{name}: exit status {code}")
+        if s["safe_stop"] is not None:
+            failures.append(f"{name}: safe stop: {s['safe_stop']}")
+        if s["allocations_in_loop"] != 0:
+            failures.append(f"{name}: {s['allocations_in_loop']} allocations in the loop")
+        if s.get("force_control") is not fc:
+            failures.append(f"{name}: force_control is {s.get('force_control')}")
+        if not isinstance(errors, list) or len(errors) != 3 or any(e is None for e in errors):
+            failures.append(f"{name}: box_waypoint_errors_m is {errors}")
+            continue
+        follows = all(e <= tol for e in errors) and s["box_dropped"] is False
+        if fc or without == "follows":
+            if not follows:
+                failures.append(f"{name}: the box misses a waypoint by more than {tol} m or is dropped")
+            if not s["box_slip_m"] <= slip_max:
+                failures.append(f"{name}: slip {s['box_slip_m']} > {slip_max} m")
+        elif follows:
+            failures.append(f"{name}: the box follows the waypoints (expected it to slip)")
+    for f in failures:
+        print(f"run_carry_box: {scene}: {f}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
