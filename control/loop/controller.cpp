@@ -59,6 +59,7 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
   for (auto& r : routers_) routers.push_back(r.get());
   for (std::size_t r = 0; r < hw.robots.size(); ++r) {
     robots_.push_back(makeRobotIo(hw, r, problem_.entity(hw.robots[r].entity), routers, dt_));
+    commanded_.push_back(hw.robots[r].state == JointState::Commanded ? 1 : 0);
   }
   if (options_.contact_estimation) {
     std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
@@ -69,6 +70,7 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
     }
     estimator_ = std::make_unique<ContactEstimator>(problem_, measured, imu_frame);
   }
+  initSafety(hw);
 }
 
 bool Controller::addHook(CycleHook& hook) noexcept {
@@ -139,6 +141,7 @@ void Controller::trip(StopReason reason, std::uint32_t flags, const std::string*
   stop_device_ = device;
   stop_cycle_ = cycle_;
   stop_time_ = now - start_;
+  enterSafeState(now);
 }
 
 void Controller::read(drivers::TimeNs now) noexcept {
@@ -159,23 +162,7 @@ void Controller::read(drivers::TimeNs now) noexcept {
           flag_first_[static_cast<std::size_t>(b)] = now - start_;
         }
       }
-      if ((flags & fatal_) != 0u) {
-        // The first device with a fatal flag names the fault.
-        const std::string* where = &r.name;
-        for (std::size_t i = 0; i < rep.device_count && where == &r.name; ++i) {
-          if ((rep.devices[i].flags & fatal_) == 0u) continue;
-          for (const JointIo& j : r.joints) {
-            if (j.device == d.get() && j.index == i) where = &j.name;
-          }
-          for (const SensorIo& s : r.ft_sensors) {
-            if (s.device == d.get() && s.index == i) where = &s.name;
-          }
-          for (const SensorIo& s : r.imus) {
-            if (s.device == d.get() && s.index == i) where = &s.name;
-          }
-        }
-        trip(StopReason::DriverFault, flags & fatal_, where, now);
-      }
+      onDeviceFaults(r, *d, rep, flags, now);
     }
   }
 }
@@ -184,6 +171,7 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
   for (RobotIo& r : robots_) {
     if (!robotCycle(r)) continue;
     problem::Entity& e = problem_.entity(r.entity);
+    const bool commanded = commanded_[static_cast<std::size_t>(&r - robots_.data())] != 0u;
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       const JointIo& j = r.joints[i];
       const drivers::JointFeedback fb = j.device->joint(j.index);
@@ -192,11 +180,11 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       // options_.loss_window cycles, may not exceed options_.loss_limit.
       r.miss_rate[i] += ((missing ? 1.0 : 0.0) - r.miss_rate[i]) / options_.loss_window;
       if (r.miss_rate[i] > options_.loss_limit) {
-        trip(StopReason::StaleSensor, fault::kSampleLost, &j.name, now);
+        staleJoint(r, i, fault::kSampleLost, now);
       }
       if (missing) {
         if (++r.stale[i] > static_cast<std::uint32_t>(feedback_missing_cycles_)) {
-          trip(StopReason::StaleSensor, fault::kFeedbackMissing, &j.name, now);
+          staleJoint(r, i, fault::kFeedbackMissing, now);
         }
         continue;
       }
@@ -208,12 +196,15 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       r.q_meas[i] = fb.position;
       r.v_meas[i] = fb.velocity;
       // The feedback was sampled at the SYNC that carried the previous setpoint: correct the
-      // state predicted since then by what the joint did differently from that setpoint.
+      // state predicted since then by what the joint did differently from that setpoint
+      // (state: measured). A robot whose state is its command keeps the prediction: its encoders
+      // are checked (above) and logged, and its tracking error is recorded.
       const double dq = fb.position - r.q_sent[i];
       const double dv = fb.velocity - r.v_sent[i];
       if (cycle_ > 0) {
         r.tracking_error_max = std::max(r.tracking_error_max, std::fabs(dq));
       }
+      if (commanded) continue;
       e.q()(j.q_index) += dq;
       e.v()(j.v_index) += dv;
     }
@@ -297,7 +288,9 @@ void Controller::remember(RobotIo& r, std::size_t i) noexcept {
 void Controller::writeSafe(drivers::TimeNs now) noexcept {
   for (RobotIo& r : robots_) {
     problem::Entity& e = problem_.entity(r.entity);
-    const double decay = std::max(0.0, 1.0 - r.hold_damping * dt_);
+    // While the recovery policy brings a drive back every robot stands still where it is (a drive
+    // that dropped out no longer follows: moving the others would strain a closed chain).
+    const double decay = recovering_ ? 0.0 : std::max(0.0, 1.0 - r.hold_damping * dt_);
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       const JointIo& j = r.joints[i];
       if (j.torque) {
@@ -311,10 +304,8 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
       e.v()(j.v_index) = r.v_cmd[i];
     }
     if (!robotCycle(r)) continue;
-    if (r.safe_stop == SafeStop::QuickStop) {
-      if (!quick_stop_sent_) {
-        for (auto& d : r.devices) d->requestQuickStop(now);
-      }
+    if (stop_ != StopReason::None && r.safe_stop == SafeStop::QuickStop) {
+      // The quick stop was requested in the cycle that tripped (enterSafeState).
     } else {
       for (std::size_t i = 0; i < r.joints.size(); ++i) {
         const JointIo& j = r.joints[i];
@@ -328,7 +319,6 @@ void Controller::writeSafe(drivers::TimeNs now) noexcept {
     }
     for (auto& d : r.devices) d->transmit(now);
   }
-  quick_stop_sent_ = true;
 }
 
 void Controller::cycle(drivers::TimeNs now) noexcept {
@@ -339,11 +329,12 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
   const drivers::TimeNs t0 = drivers::monotonicNow();
   read(now);
   const drivers::TimeNs t1 = drivers::monotonicNow();
-  if (stop_ == StopReason::None) estimate(now);
+  stepLoopRecovery(now);
+  if (stop_ == StopReason::None) estimate(now);  // also while recovering: the held state follows the drives
   for (int h = 0; h < hook_count_; ++h) hooks_[static_cast<std::size_t>(h)]->onCycle(*this, now);
   const drivers::TimeNs t2 = drivers::monotonicNow();
   drivers::TimeNs t3 = t2, t4 = t2;
-  if (stop_ == StopReason::None) {
+  if (stop_ == StopReason::None && !recovering_) {
     if (problem_.update() != problem::UpdateStatus::Ok) {
       trip(StopReason::NonFinite, 0, nullptr, now);
     }
@@ -358,7 +349,7 @@ void Controller::cycle(drivers::TimeNs now) noexcept {
     }
     t4 = drivers::monotonicNow();
   }
-  if (stop_ == StopReason::None) {
+  if (stop_ == StopReason::None && !recovering_) {
     write(now);
   } else {
     writeSafe(now);
@@ -463,7 +454,20 @@ void Controller::logRow(drivers::TimeNs now) noexcept {
     row[col_buses_ + static_cast<int>(b)] = static_cast<double>(frames - bus_frames_prev_[b]);
     bus_frames_prev_[b] = frames;
   }
+  for (const LogValues& x : log_values_) {
+    for (int i = 0; i < x.count; ++i) row[x.first + i] = x.values[i];
+  }
   log_->commit();
+}
+
+void Controller::attachLogValues(LogRing& log, const std::vector<std::string>& names, const double* values) {
+  if (names.empty()) return;
+  LogValues x;
+  x.first = log.addColumn(names.front());
+  for (std::size_t i = 1; i < names.size(); ++i) log.addColumn(names[i]);
+  x.count = static_cast<int>(names.size());
+  x.values = values;
+  log_values_.push_back(x);
 }
 
 }  // namespace mrqp::loop

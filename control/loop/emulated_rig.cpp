@@ -41,6 +41,9 @@ EmulatedRig::EmulatedRig(const ResolvedHardware& hw, const problem::MultiRobotPr
         throw std::runtime_error("emulated rig: the " + std::string(plant.kind()) + " plant has no joint '" +
                                  d.joint_name + "' of '" + r.name + "'");
       }
+      // The drive watches the controller's heartbeat when the hardware section has one (the
+      // controller then writes 0x1016:1); it reacts by a fault (0x6007 = 1) and pre-operational.
+      o.profile.heartbeat_consumer = true;
       o.torque_mode = d.mode == DriveMode::Cst;
       o.rated_torque = d.rated_torque;
       const double limit = e.effortLimit()(d.joint);

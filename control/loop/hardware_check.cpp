@@ -1,6 +1,7 @@
 // Resolving the hardware section against the models, and the bus budget (see hardware_check.hpp).
 #include "loop/hardware_check.hpp"
 
+#include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/drivers/bus_budget.hpp>
 
 #include <algorithm>
@@ -39,6 +40,20 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
   ResolvedHardware out;
   out.heartbeat_timeout_s = spec.heartbeat_timeout_s;
   out.feedback_missing_cycles = spec.feedback_missing_cycles;
+  out.controller_heartbeat = spec.controller_heartbeat;
+  out.recovery = spec.recovery;
+  out.safe_exit = spec.safe_exit;
+  if (const int hb = spec.controller_heartbeat.node; hb != 0) {
+    for (std::size_t r = 0; r < spec.robots.size(); ++r) {
+      for (const Cia402Group& g : spec.robots[r].cia402) {
+        if (hb >= g.first_node && hb < g.first_node + static_cast<int>(g.joints.size())) {
+          fail(spec.controller_heartbeat.source, "hardware.controller_heartbeat.node",
+               "node " + std::to_string(hb) + " is a CiA 402 drive of '" + spec.robots[r].entity +
+                   "' on bus '" + g.bus + "'");
+        }
+      }
+    }
+  }
   for (const BusDecl& b : spec.buses) {
     ResolvedBus rb;
     rb.decl = b;
@@ -74,6 +89,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rr.divisor = rh.divisor;
     rr.safe_stop = rh.safe_stop;
     rr.hold_damping = rh.hold_damping;
+    rr.state = rh.state;
     if (rr.entity < 0) {
       fail(rh.source, robotField(r, "entity"), "unknown entity '" + rh.entity + "'");
     }
@@ -266,6 +282,21 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rb.report = budget.report();
   }
   return out;
+}
+
+void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw) {
+  const ControllerHeartbeatSpec& hb = hw.controller_heartbeat;
+  if (hb.node != 0) {
+    config.master_node = static_cast<std::uint8_t>(hb.node);
+    config.master_heartbeat_ms = static_cast<std::uint16_t>(std::lround(hb.period_s * 1000.0));
+    config.drive_consumer_ms = static_cast<std::uint16_t>(std::lround(hb.drive_timeout_s * 1000.0));
+  }
+  config.exit_stop = hw.safe_exit.stop == ExitStopKind::DisableVoltage ? drivers::ExitStop::DisableVoltage
+                                                                       : drivers::ExitStop::QuickStop;
+  config.exit_nmt = hw.safe_exit.nmt == ExitNmtKind::Stopped     ? drivers::ExitNmt::Stopped
+                    : hw.safe_exit.nmt == ExitNmtKind::Unchanged ? drivers::ExitNmt::Unchanged
+                                                                 : drivers::ExitNmt::PreOperational;
+  config.recovery = drivers::RecoveryPolicy::Manual;
 }
 
 }  // namespace mrqp::loop

@@ -13,6 +13,10 @@
 #include "loop/hardware_spec.hpp"
 #include "problem/multi_robot_problem.hpp"
 
+namespace mrqp::drivers {
+struct ArmConfig;
+}
+
 namespace mrqp::loop {
 
 /// What drives a joint: a CiA 402 drive, an MIT-mode motor, a joint of a CAN FD hand board.
@@ -45,6 +49,7 @@ struct ResolvedRobot {
   int divisor = 1;
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
+  JointState state = JointState::Measured;
   std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
   std::vector<ResolvedDrive> impedance;  ///< MIT motors and FD board joints, in the order of the file
   std::vector<ResolvedSensor> ft_sensors;
@@ -64,7 +69,15 @@ struct ResolvedHardware {
   std::vector<ResolvedRobot> robots;
   double heartbeat_timeout_s = 0.25;
   int feedback_missing_cycles = 3;
+  ControllerHeartbeatSpec controller_heartbeat;
+  RecoverySpec recovery;
+  SafeExitSpec safe_exit;
 };
+
+/// The hardware section's controller heartbeat (master node, its period, the drives' consumer
+/// time) and safe exit in an arm driver's configuration; recovery stays the loop's decision
+/// (RecoveryPolicy::Manual).
+void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw);
 
 /// Resolves `spec` against the entities of `problem` for a loop period `dt` (s).
 ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem,

@@ -55,11 +55,17 @@ struct SensorDecl {
 
 enum class SafeStop : std::uint8_t { Hold = 0, QuickStop };
 
+/// Where the controller's joint state of a robot comes from (docs/loop.md, "The cycle"): its
+/// drives' feedback (the prediction corrected by measured − sent), or its own integrated command
+/// (a position-controlled robot: the encoders are checked and logged, not fed back).
+enum class JointState : std::uint8_t { Measured = 0, Commanded };
+
 struct RobotHardware {
   std::string entity;
   int divisor = 1;  ///< the robot's cycle = the loop's period × divisor
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;  ///< 1/s: hold decays the commanded velocity by this rate
+  JointState state = JointState::Measured;
   std::vector<Cia402Group> cia402;
   std::vector<ImpedanceGroup> impedance;
   std::vector<SensorDecl> ft_sensors;
@@ -67,10 +73,38 @@ struct RobotHardware {
   scene::Source source;
 };
 
+/// How the arm drives are left at the end of a run (the arm driver's safe exit): the power stage
+/// stopped by quick stop or disable voltage, then the NMT state.
+enum class ExitStopKind : std::uint8_t { QuickStop = 0, DisableVoltage };
+enum class ExitNmtKind : std::uint8_t { PreOperational = 0, Stopped, Unchanged };
+struct SafeExitSpec {
+  ExitStopKind stop = ExitStopKind::QuickStop;
+  ExitNmtKind nmt = ExitNmtKind::PreOperational;
+};
+
+/// The loop's recovery of recoverable drive faults (docs/loop.md, "Safety"): at most max_attempts
+/// attempts of backoff_s seconds each; 0 attempts: none (every fault stops the controller).
+struct RecoverySpec {
+  int max_attempts = 0;
+  double backoff_s = 0.5;
+};
+
+/// The controller's heartbeat on the buses of the CiA 402 drives (node 0: none), and the consumer
+/// time every drive is given for it (0x1016:1).
+struct ControllerHeartbeatSpec {
+  int node = 0;
+  double period_s = 0.1;
+  double drive_timeout_s = 0.3;
+  scene::Source source;
+};
+
 struct HardwareSpec {
   bool present = false;               ///< the scene has a hardware section
   double heartbeat_timeout_s = 0.25;  ///< consumer time of the drives' heartbeats
   int feedback_missing_cycles = 3;    ///< robot cycles without feedback → fault
+  ControllerHeartbeatSpec controller_heartbeat;
+  RecoverySpec recovery;
+  SafeExitSpec safe_exit;
   std::vector<BusDecl> buses;
   std::vector<RobotHardware> robots;
   scene::Source source;

@@ -116,9 +116,9 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 }
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(
-      r, n, path,
-      {"entity", "divisor", "safe_stop", "hold_damping", "cia402", "mit", "fd", "ft_sensors", "imus"});
+  const Map m(r, n, path,
+              {"entity", "divisor", "safe_stop", "hold_damping", "state", "cia402", "mit", "fd", "ft_sensors",
+               "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);
@@ -133,6 +133,16 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
     }
   }
   rh.hold_damping = m.number("hold_damping", Bound::NonNegative, 1.0);
+  if (const YAML::Node* s = m.find("state")) {
+    const std::string v = r.name(*s, m.at("state"));
+    if (v == "measured") {
+      rh.state = JointState::Measured;
+    } else if (v == "commanded") {
+      rh.state = JointState::Commanded;
+    } else {
+      r.fail(*s, m.at("state"), "expected measured or commanded, got \"" + v + "\"");
+    }
+  }
   auto each = [&](const char* key, auto read) {
     if (const YAML::Node* l = m.find(key)) {
       const std::vector<YAML::Node> items = r.list(*l, m.at(key));
@@ -156,13 +166,78 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
   return rh;
 }
 
+ControllerHeartbeatSpec readControllerHeartbeat(const Reader& r, const YAML::Node& n,
+                                                const std::string& path) {
+  const Map m(r, n, path, {"node", "period", "drive_timeout"});
+  ControllerHeartbeatSpec h;
+  h.node = m.integer("node", 1, 127, 1);
+  h.period_s = m.number("period", Bound::Positive, 0.1);
+  h.drive_timeout_s = m.number("drive_timeout", Bound::Positive, 0.3);
+  // Both go to the wire in milliseconds (16 bits); the drives' consumer time must exceed the period.
+  if (h.period_s < 0.001 || h.period_s > 65.535) {
+    r.fail(m.require("period"), m.at("period"), "expected a period in [0.001, 65.535] s");
+  }
+  if (h.drive_timeout_s > 65.535) {
+    r.fail(m.require("drive_timeout"), m.at("drive_timeout"), "above 65.535 s, the largest consumer time");
+  }
+  if (h.drive_timeout_s <= h.period_s) {
+    r.fail(m.has("drive_timeout") ? m.require("drive_timeout") : n, m.at("drive_timeout"),
+           "the drives' consumer time must exceed the heartbeat period");
+  }
+  h.source = m.source();
+  return h;
+}
+
+RecoverySpec readRecovery(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"max_attempts", "backoff"});
+  RecoverySpec s;
+  s.max_attempts = m.integer("max_attempts", 0, 100, 1);
+  s.backoff_s = m.number("backoff", Bound::Positive, 0.5);
+  return s;
+}
+
+SafeExitSpec readSafeExit(const Reader& r, const YAML::Node& n, const std::string& path) {
+  const Map m(r, n, path, {"stop", "nmt"});
+  SafeExitSpec s;
+  if (const YAML::Node* stop = m.find("stop")) {
+    const std::string v = r.name(*stop, m.at("stop"));
+    if (v == "quick_stop") {
+      s.stop = ExitStopKind::QuickStop;
+    } else if (v == "disable_voltage") {
+      s.stop = ExitStopKind::DisableVoltage;
+    } else {
+      r.fail(*stop, m.at("stop"), "expected quick_stop or disable_voltage, got \"" + v + "\"");
+    }
+  }
+  if (const YAML::Node* nmt = m.find("nmt")) {
+    const std::string v = r.name(*nmt, m.at("nmt"));
+    if (v == "pre_operational") {
+      s.nmt = ExitNmtKind::PreOperational;
+    } else if (v == "stopped") {
+      s.nmt = ExitNmtKind::Stopped;
+    } else if (v == "unchanged") {
+      s.nmt = ExitNmtKind::Unchanged;
+    } else {
+      r.fail(*nmt, m.at("nmt"), "expected pre_operational, stopped or unchanged, got \"" + v + "\"");
+    }
+  }
+  return s;
+}
+
 HardwareSpec readHardware(const Reader& r, const YAML::Node& n) {
-  const Map m(r, n, "hardware", {"heartbeat_timeout", "feedback_missing_cycles", "buses", "robots"});
+  const Map m(r, n, "hardware",
+              {"heartbeat_timeout", "feedback_missing_cycles", "controller_heartbeat", "recovery",
+               "safe_exit", "buses", "robots"});
   HardwareSpec h;
   h.present = true;
   h.source = m.source();
   h.heartbeat_timeout_s = m.number("heartbeat_timeout", Bound::Positive, 0.25);
   h.feedback_missing_cycles = m.integer("feedback_missing_cycles", 1, 1000, 3);
+  if (const YAML::Node* c = m.find("controller_heartbeat")) {
+    h.controller_heartbeat = readControllerHeartbeat(r, *c, m.at("controller_heartbeat"));
+  }
+  if (const YAML::Node* c = m.find("recovery")) h.recovery = readRecovery(r, *c, m.at("recovery"));
+  if (const YAML::Node* c = m.find("safe_exit")) h.safe_exit = readSafeExit(r, *c, m.at("safe_exit"));
   scene::UniqueNames bus_names(r, "bus");
   const std::vector<YAML::Node> buses = r.list(m.require("buses"), m.at("buses"));
   for (std::size_t i = 0; i < buses.size(); ++i) {

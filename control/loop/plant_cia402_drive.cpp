@@ -14,6 +14,7 @@ drivers::EmulatedCia402Drive::Options driveOptions(const PlantDriveOptions& o) n
   drivers::EmulatedCia402Drive::Options d;
   d.node = o.node;
   d.response_delay = o.response_delay;
+  d.profile = o.profile;
   return d;
 }
 }  // namespace

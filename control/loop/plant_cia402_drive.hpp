@@ -32,6 +32,7 @@ struct PlantDriveOptions {
   double brake_kp = 20000.0;    ///< holding brake (drive not enabled), as a stiff servo
   double brake_kd = 300.0;
   drivers::TimeNs response_delay = 20000;
+  emulation::VendorProfile profile = emulation::VendorProfile::lenient();  ///< how strict the firmware is
 };
 
 class PlantCia402Drive final : public drivers::SimListener, private drivers::EmulatedCia402Drive::Host {
@@ -43,7 +44,12 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
   void onTimer(drivers::SimNode& node, drivers::TimeNs now) noexcept override;
 
   // ---- fault injection ----
-  void stopHeartbeat(drivers::TimeNs at) noexcept { drive_.stopHeartbeatAt(at); }
+  /// The heartbeat exchange is lost: the drive's heartbeat stops from `at` and the controller's no
+  /// longer reaches it (a drive watching it, per 0x1016 and its profile, then reacts by itself).
+  void stopHeartbeat(drivers::TimeNs at) noexcept {
+    drive_.stopHeartbeatAt(at);
+    drive_.setMasterHeartbeatLost(true);
+  }
   /// Drop `per_mille` ‰ of the frames this drive sends (a deterministic sequence).
   void setFrameLoss(unsigned per_mille) noexcept { loss_per_mille_ = per_mille; }
   /// Send every TPDO with a wrong length from now on.
@@ -53,6 +59,9 @@ class PlantCia402Drive final : public drivers::SimListener, private drivers::Emu
 
   std::uint8_t node() const noexcept { return drive_.node(); }
   mrqp_fw_cia402_state state() const noexcept { return drive_.state(); }
+  /// The emulated firmware (observation: NMT state, object dictionary, error counters).
+  const drivers::EmulatedCia402Drive& firmware() const noexcept { return drive_; }
+  drivers::EmulatedCia402Drive& firmware() noexcept { return drive_; }
   unsigned framesDropped() const noexcept { return dropped_; }
 
  private:

@@ -349,7 +349,8 @@ void checkConstraintCapacity(const Reader& r, const Map& top, const SceneSpec& s
 std::vector<std::string> topLevelKeys() {
   std::vector<std::string> keys = {"settings", "entities", "contacts", "tasks"};
   for (const ConstraintKindEntry& k : constraintKinds()) keys.emplace_back(k.key);
-  for (const char* loop : {"hardware", "plant", "timeline", "force_control", "trajectories"}) keys.emplace_back(loop);
+  for (const char* loop : {"hardware", "plant", "timeline", "force_control", "estimation", "trajectories"})
+    keys.emplace_back(loop);
   return keys;
 }
 

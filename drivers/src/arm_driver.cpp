@@ -334,7 +334,9 @@ const FaultReport& ArmDriver::update(TimeNs now) noexcept {
         }
         d.prev_state = s;
       }
-      if (!(d.state.valid && cia402StateReached(d.target, d.state.state)) &&
+      // A recovery has its own time limit (boot_timeout); the target's is measured once it is back.
+      if (d.recovery == Drive::Recovery::None &&
+          !(d.state.valid && cia402StateReached(d.target, d.state.state)) &&
           now - d.target_since > config_.enable_timeout) {
         flags |= fault::kTimeout;
       }

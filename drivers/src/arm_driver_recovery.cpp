@@ -202,9 +202,10 @@ void ArmDriver::stepSafeExit(TimeNs now) noexcept {
   }
   bool all = true;
   for (const Drive& d : drives_) {
-    // A drive without feedback, or not operational, cannot report a stop: nothing to wait for.
+    // A drive without feedback, or not operational, cannot report a stop, and a drive in Fault has
+    // its power stage off already: nothing to wait for.
     const bool talking = d.state.valid && d.state.nmt_state != MRQP_FW_NMT_STATE_PRE_OPERATIONAL &&
-                         d.state.nmt_state != MRQP_FW_NMT_STATE_STOPPED;
+                         d.state.nmt_state != MRQP_FW_NMT_STATE_STOPPED && !cia402FaultState(d.state.state);
     if (talking && !cia402StateReached(d.target, d.state.state)) {
       all = false;
     }

@@ -2,6 +2,8 @@
 // subtreeMass, bodyMass, bodyFirstMoment, bodyRotationalInertia, comDiagonal, bodyCom,
 // bodyComInertia, frame_R, frame_p) and its Data: mrqp-gen copies the text after the marker line
 // into the anonymous namespace of each generated .cpp, after the model's tables and kernels.hpp.
+// The frame Jacobians' walk is unrolled at compile time instead: one function per body
+// (chainColumns), whose joint facts are constants of the template.
 // Compiled in every generated model and tested there against the reference implementation
 // (tests/model_gen/test_generated_models.cpp).
 #pragma once
@@ -182,17 +184,47 @@ inline void put(double* out, double x) noexcept {
     *out += x;
 }
 
-/// Columns of b's chain in the world-aligned Jacobian of the world point pt carried by body b: a
-/// revolute joint c gives g_c (a, a × (pt − p_c)), a prismatic one g_c (0, a), a = R_c's joint
-/// axis; assigned (Assign, when b's chain holds no coordinate twice) or added.
-template <bool Assign>
-inline void chainColumns(const Data& d, int b, const double* pt, double* Jp) noexcept {
-  for (int c = b; c > 0; c = parentOf[c]) {
+/// g_c (the mimic gain) times the world direction of joint c's axis, with all that is known of the
+/// axis resolved at compile time: an axis ±e_k of the body frame reads column k of R_c, negated or
+/// scaled only when g_c·(±1) is not 1.
+template <int C>
+inline void jointAxisWorld(const Data& d, double* a) noexcept {
+  constexpr JointAxis j = jointAxes[ix(C)];
+  const double* R = d.R[ix(C)].data();
+  if constexpr (j.column >= 0) {
+    const double* col = R + 3 * j.column;
+    if constexpr (j.scale == 1.0) {
+      a[0] = col[0];
+      a[1] = col[1];
+      a[2] = col[2];
+    } else if constexpr (j.scale == -1.0) {
+      a[0] = -col[0];
+      a[1] = -col[1];
+      a[2] = -col[2];
+    } else {
+      a[0] = j.scale * col[0];
+      a[1] = j.scale * col[1];
+      a[2] = j.scale * col[2];
+    }
+  } else {
+    rotate(R, S6[C] + (j.part > 0 ? j.part : 0), a);
+    for (int i = 0; i < 3; ++i) a[i] *= j.scale;
+  }
+}
+
+/// The columns of joint C and of every joint above it in the world-aligned Jacobian of the world
+/// point pt: a revolute joint c gives g_c (a, a × (pt − p_c)), a prismatic one g_c (0, a), a = R_c's
+/// joint axis; assigned (Assign) or added. One function per body, each with its joint's column
+/// offset, axis and gain as constants, ending in a tail call of its parent's: the code stays
+/// linear in the number of bodies (not inlined into one another) and a column costs no table look-up.
+template <int C, bool Assign>
+[[gnu::noinline]] void chainColumns(const Data& d, const double* pt, double* Jp) noexcept {
+  if constexpr (C > 0) {
     double a[3];
-    scaledJointAxisWorld(d, c, a);
-    double* out = Jp + 6 * vIndex[c];
-    if (jointAxes[ix(c)].part == 0) {
-      const double* pc = d.p[ix(c)].data();
+    jointAxisWorld<C>(d, a);
+    double* out = Jp + 6 * vIndex[C];
+    if constexpr (jointAxes[ix(C)].part == 0) {
+      const double* pc = d.p[ix(C)].data();
       const double dp0 = pt[0] - pc[0], dp1 = pt[1] - pc[1], dp2 = pt[2] - pc[2];
       put<Assign>(out, a[0]);
       put<Assign>(out + 1, a[1]);
@@ -206,8 +238,22 @@ inline void chainColumns(const Data& d, int b, const double* pt, double* Jp) noe
       put<Assign>(out + 5, a[2]);
       if (Assign) out[0] = out[1] = out[2] = 0.0;
     }
+    if constexpr (parentOf[C] > 0) chainColumns<parentOf[C], Assign>(d, pt, Jp);
+  } else {
+    (void)d;
+    (void)pt;
+    (void)Jp;
   }
 }
+
+/// chainColumns of each body b (assigning when b's chain holds no coordinate twice, else adding).
+using ChainColumnsFn = void (*)(const Data&, const double*, double*) noexcept;
+template <int... B>
+constexpr std::array<ChainColumnsFn, nbodies> makeChainColumnsFns(std::integer_sequence<int, B...>) noexcept {
+  return {{&chainColumns<B, chainUnique[ix(B)]>...}};
+}
+constexpr std::array<ChainColumnsFn, nbodies> chainColumnsOf =
+    makeChainColumnsFns(std::make_integer_sequence<int, nbodies>{});
 
 /// World-aligned Jacobian of the world point pt carried by body b, written whole, each entry once
 /// where no mimic joints share a column: the columns no joint of b's chain moves (and the columns
@@ -216,10 +262,7 @@ inline void bodyJacobian(const Data& d, int b, const double* pt, Jacobian& J) no
   double* Jp = J.data();
   zeroRuns(Jp, jacobianZeroRuns.runs.data() + jacobianZeroRuns.first[ix(b)],
            jacobianZeroRuns.runs.data() + jacobianZeroRuns.first[ix(b + 1)]);
-  if (chainUnique[ix(b)])
-    chainColumns<true>(d, b, pt, Jp);
-  else
-    chainColumns<false>(d, b, pt, Jp);
+  chainColumnsOf[ix(b)](d, pt, Jp);
   if (floating_base) {
     const double* R = d.R[0].data();
     // Copied first: the stores to J cannot then force R0 to be read again.

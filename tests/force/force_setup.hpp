@@ -15,6 +15,7 @@
 #include "force/admittance_hook.hpp"
 #include "force/force_control_yaml.hpp"
 #include "loop/controller.hpp"
+#include "loop/device_lifecycle.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
@@ -133,16 +134,7 @@ struct ForceSetup {
     ctrl->addHook(*hook);
   }
 
-  bool boot() {
-    ctrl->startDevices(now);
-    for (int k = 0; k < 10000; ++k) {
-      const bool ready = ctrl->bootCycle(now);
-      rig->advanceTo(now + period);
-      now += period;
-      if (ready) return true;
-    }
-    return false;
-  }
+  bool boot() { return loop::bootDevices(*ctrl, now, period, rig.get()).done; }
 
   void cycle() noexcept {
     ctrl->cycle(now);

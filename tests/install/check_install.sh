@@ -8,6 +8,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > /dev/null
+# The built-in models' collision geometry comes with the collision library (docs/collision.md).
+if [ -n "$(find "$work/prefix" -name libmrqp_collision.a -print -quit)" ]; then
+  for f in panda.yaml panda.srdf jvrc1.yaml; do test -f "$work/prefix/share/mrqp/collision/$f"; done
+fi
 cmake -S "$here/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DPANDA_URDF="$here/../../control/model/urdf/panda.urdf" > /dev/null
 cmake --build "$work/consumer" -j"$(nproc)" > /dev/null

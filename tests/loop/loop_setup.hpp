@@ -7,6 +7,7 @@
 #include <string>
 
 #include "loop/controller.hpp"
+#include "loop/device_lifecycle.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
@@ -39,21 +40,12 @@ struct LoopSetup {
   }
 
   /// Boots and enables every device; false when not ready within 10 s.
-  bool boot() {
-    ctrl->startDevices(now);
-    for (int k = 0; k < 10000; ++k) {
-      const bool ready = ctrl->bootCycle(now);
-      rig->advanceTo(now + period);
-      now += period;
-      if (ready) return true;
-    }
-    return false;
-  }
+  bool boot() { return loop::bootDevices(*ctrl, now, period, rig.get()).done; }
 
   /// One loop cycle: the controller at `now`, then the buses and the plant to the next cycle.
   void cycle() noexcept {
     ctrl->cycle(now);
-    plant->setFollowing(!ctrl->safeStopped());
+    plant->setFollowing(!ctrl->holding());
     rig->advanceTo(now + period);
     now += period;
   }

@@ -125,3 +125,14 @@ TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loo
   REQUIRE_FALSE(b.check(&message));
   CHECK(errorOf(hw) == "s.yaml:14: hardware.buses[0]: " + message);
 }
+
+TEST_CASE("loop: a robot's joint state is measured by default, or commanded", "[loop][hardware]") {
+  const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";  // lines 16-18
+  CHECK(resolve(kBuses + robot + kDrives).robots.at(0).state == loop::JointState::Measured);
+  CHECK(resolve(kBuses + robot + "      state: commanded\n" + kDrives).robots.at(0).state ==
+        loop::JointState::Commanded);
+  CHECK(resolve(kBuses + robot + "      state: measured\n" + kDrives).robots.at(0).state ==
+        loop::JointState::Measured);
+  CHECK(errorOf(kBuses + robot + "      state: estimated\n" + kDrives) ==
+        "s.yaml:19: hardware.robots[0].state: expected measured or commanded, got \"estimated\"");
+}

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "counting_allocator.hpp"
+#include "loop/scene_override.hpp"
 #include "loop_setup.hpp"
 
 using looptest::LoopSetup;
@@ -65,4 +66,43 @@ TEST_CASE("loop: 10,000 loop cycles over CAN with the plant allocate nothing", "
     // The counter counts: a self-check.
     CHECK(mrqp::testing::allocationsIn([] { delete new volatile int(3); }) >= 1);
   }
+}
+
+TEST_CASE(
+    "loop: 10,000 cycles with the drives' safety (events, a recovery, a trip) and the safe exit allocate "
+    "nothing",
+    "[loop][realtime][safety]") {
+  std::string text = looptest::sceneText("panda_door.yaml");
+  for (const char* set : {"hardware.recovery={max_attempts: 3, backoff: 0.5}",
+                          "hardware.controller_heartbeat={node: 100, period: 0.1, drive_timeout: 0.3}",
+                          "hardware.robots[0].safe_stop=quick_stop"}) {
+    text = mrqp::loop::applySceneOverride(text, "panda_door.yaml", set);
+  }
+  LoopSetup s(text, "panda_door.yaml");
+  REQUIRE(s.boot());
+  for (int k = 0; k < 10; ++k) s.cycle();  // warm-up: first solves
+  long in_cycle = 0;
+  for (int k = 0; k < 10000; ++k) {
+    if (k == 1000) s.rig->drive("panda.panda_joint3")->firmware().powerOn(s.now);  // rebooted: recovered
+    if (k == 6000) s.rig->drive("panda.panda_joint5")->breakEncoder();             // EMCY 0x7305: the trip
+    in_cycle += mrqp::testing::allocationsIn([&] { s.ctrl->cycle(s.now); });
+    s.plant->setFollowing(!s.ctrl->holding());
+    s.rig->advanceTo(s.now + s.period);
+    s.now += s.period;
+  }
+  INFO("stopped: " << s.ctrl->stopDescription());
+  CHECK(s.ctrl->recoveries() == 1u);
+  CHECK(s.ctrl->safeStopped());
+  CHECK(s.ctrl->faultEventCount() > 0u);
+  CHECK(in_cycle == 0);
+  // The safe exit's cycles allocate nothing either.
+  long in_exit = mrqp::testing::allocationsIn([&] { s.ctrl->requestSafeExit(s.now); });
+  bool done = false;
+  for (int k = 0; k < 2000 && !done; ++k) {
+    in_exit += mrqp::testing::allocationsIn([&] { done = s.ctrl->exitCycle(s.now); });
+    s.rig->advanceTo(s.now + s.period);
+    s.now += s.period;
+  }
+  CHECK(done);
+  CHECK(in_exit == 0);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "loop/controller.hpp"
+#include "loop/device_lifecycle.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
@@ -43,16 +44,7 @@ struct SimLoop {
   }
 
   /// Boots and enables every device; false when not ready within 10 s.
-  bool boot() {
-    ctrl->startDevices(now);
-    for (int k = 0; k < 10000; ++k) {
-      const bool ready = ctrl->bootCycle(now);
-      rig->advanceTo(now + period);
-      now += period;
-      if (ready) return true;
-    }
-    return false;
-  }
+  bool boot() { return loop::bootDevices(*ctrl, now, period, rig.get()).done; }
 
   /// One loop cycle: the controller at `now`, then the buses and the plant to the next cycle.
   void cycle() noexcept {

@@ -2,8 +2,8 @@
 //
 //   1. collision::distance per shape pair (capsule–capsule, box–box, box–capsule, hull–hull with
 //      40-vertex hulls), placements random within reach of each other;
-//   2. per pair of the co-manipulation scene: exact distance + the two witness points' Jacobians
-//      and J̇v (what a row of eq. 24 needs), over every enabled pair;
+//   2. per pair of the co-manipulation scene: exact distance + the two witness points' Jacobians,
+//      J̇v and d̈'s curvature term (what a row of eq. 24 needs), over every enabled pair;
 //   3. the control cycle (update + solve + integration, the model as its own plant) of
 //      tools/scenes/comanipulation.yaml without and with every non-adjacent pair of both robots
 //      (JVRC-1 self, Panda self, JVRC-1–Panda) enabled; link pairs whose shapes already overlap or
@@ -25,8 +25,9 @@
 #include <string>
 #include <vector>
 
-#include "collision/distance.hpp"
 #include "collision/collision_constraint.hpp"
+#include "collision/distance.hpp"
+#include "collision/distance_rate.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
@@ -206,7 +207,7 @@ int benchMain(int argc, char** argv) {
       pairs, collisionOf(with, "jvrc_self").pairCount(), collisionOf(with, "panda_self").pairCount(),
       collisionOf(with, "jvrc_panda").pairCount(), ex_jvrc, ex_panda);
 
-  // ---- 2. per pair: distance + witness Jacobians and J̇v ----
+  // ---- 2. per pair: distance + witness Jacobians, J̇v and d̈'s curvature term ----
   {
     const auto& p = *with.problem;
     int maxnv = 0;
@@ -234,14 +235,25 @@ int benchMain(int argc, char** argv) {
           eb.frameJacobian(bb.frame, lb, B);
           sink += r.distance + A(3, 0) + B(3, 0) + ea.frameBiasAcceleration(ba.frame, la)(3) +
                   eb.frameBiasAcceleration(bb.frame, lb)(3);
+          // d̈'s curvature term (collision/distance_rate.hpp) from the witnesses' twists.
+          const auto ta = A * ea.v(), tb = B * eb.v();
+          collision::RigidMotion ma, mb;
+          ma.omega = ta.head(3);
+          ma.v = ta.tail(3);
+          ma.at = r.a;
+          mb.omega = tb.head(3);
+          mb.v = tb.tail(3);
+          mb.at = r.b;
+          sink += collision::distanceCurvature(r, ba.shape.radius, bb.shape.radius, ma, mb);
           ++n;
         }
       }
     }
     const double us = micro(Clock::now() - t0) / n;
     if (sink == 12345.678) std::printf(" ");
-    std::printf("per pair: distance + 2 witness Jacobians + 2 J̇v: %.2f µs (mean over %d pairs × 20)\n", us,
-                n / 20);
+    std::printf(
+        "per pair: distance + 2 witness Jacobians + 2 J̇v + curvature: %.2f µs (mean over %d pairs × 20)\n",
+        us, n / 20);
   }
 
   // ---- 3. the cycle ----

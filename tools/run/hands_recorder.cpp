@@ -173,7 +173,7 @@ std::vector<std::string> HandsRecorder::write(const std::string& dir, const std:
             "' every ::1 using 1:" + std::to_string(c + 2) + " with lines title 'sensed'\n";
     limits += "set title '" + n +
               ": largest |tau| / tau_max of its chain'\nset xlabel 't (s)'\nset ylabel "
-              "'|tau| / tau_max'\nset yrange [0:1.1]\nplot '" +
+              "'|tau| / tau_max'\nset yrange [0:*]\nplot '" +
               csv + "' every ::1 using 1:" + std::to_string(c + 4) +
               " with lines lw 2 title 'chain', 1 with lines dt 2 lc rgb 'red' title 'limit'\n";
   }

@@ -21,11 +21,14 @@
 #ifdef MRQP_RUN_HAVE_COLLISION
 #include "collision/collision_watch.hpp"
 #endif
+#include "estimation/estimation_yaml.hpp"
+#include "estimation_run.hpp"
 #include "carry_watch.hpp"
 #include "force/admittance_hook.hpp"
 #include "force/force_control_yaml.hpp"
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
+#include "loop/device_lifecycle.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/fault_injector.hpp"
 #include "loop/hardware_check.hpp"
@@ -36,6 +39,7 @@
 #include "loop/scene_override.hpp"
 #include "loop/timeline.hpp"
 #include "motion_track.hpp"
+#include "pen_click_watch.hpp"
 #include "plant_factory.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
@@ -198,6 +202,10 @@ int runMain(int argc, char** argv) {
   for (const auto& [name, id] : sc.contacts) contact_names[static_cast<std::size_t>(id)] = name;
   loop::LogRing ring;
   ctrl.attachLog(ring, task_names, contact_names);
+  // The scene's estimation section (docs/estimation.md): its hook, log columns and summary fields.
+  run::EstimationRun estimator_run(
+      estimation::readEstimation(text, o.scene, spec, sc, rh), ctrl, ring,
+      o.cycles > 0 ? o.cycles : std::lround((o.duration > 0.0 ? o.duration : sc.settings.duration) / dt));
   ring.freeze(1u << 13);  // 8 s of rows at 1 kHz: the writer drains every 2 ms
   loop::FaultInjector faults(o.faults, rig.get(), ctrl, rh);
   loop::Timeline timeline = loop::Timeline::read(text, o.scene, sc);
@@ -223,6 +231,7 @@ int runMain(int argc, char** argv) {
     carry = std::make_unique<run::CarryWatch>(sc, *carry_shadow->problem, *plant, trajectory, &admittance,
                                               static_cast<double>(cycles) * dt);
   }
+  run::PenClickWatch pen_watch(spec, models, p, *plant, cycles);  // a pen scene's fields (docs/scenes.md)
 #ifdef MRQP_RUN_HAVE_COLLISION
   // summary.json's min_distance_m: every collision pair measured on the plant's state between
   // cycles, on a second problem of the scene (docs/collision.md).
@@ -265,19 +274,12 @@ int runMain(int argc, char** argv) {
     const drivers::TimeNs deadline = paced ? clock.wait() : 0;
     return sim ? now + period : deadline;
   };
-  ctrl.startDevices(now);
-  long boot = 0;
-  const long boot_limit = std::lround(10.0 / dt);
-  for (;; ++boot) {
-    if (boot >= boot_limit) {
-      throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
-                               flagNames(ctrl.bootFlags()) + ")");
-    }
-    const bool ready = ctrl.bootCycle(now);
-    if (rig) rig->advanceTo(now + period);
-    now = next();
-    if (ready) break;
+  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), 10.0, next);
+  if (!booted.done) {
+    throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
+                             flagNames(booted.flags) + ")");
   }
+  const long boot = booted.cycles;
   if (!o.quiet)
     std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
 
@@ -297,9 +299,11 @@ int runMain(int argc, char** argv) {
     ctrl.cycle(now);
     armAllocationCounter(false);
     faults.afterCycle();
+    estimator_run.record(static_cast<double>(k) * dt);
 #ifdef MRQP_RUN_HAVE_COLLISION
     watch.measure(plantState);
 #endif
+    pen_watch.measure(static_cast<double>(k) * dt);
     if (carry) carry->sample(static_cast<double>(k) * dt);
     if (o.plots && motion.due(static_cast<double>(k) * dt)) motion.capture(static_cast<double>(k) * dt);
     if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
@@ -319,6 +323,13 @@ int runMain(int argc, char** argv) {
   if (paced) misses = static_cast<long>(clock.overruns() - overruns0);
   writer.stop();
   const double loop_s = static_cast<double>(now - loop_start) * 1e-9;
+  std::vector<std::uint64_t> busy1;
+  if (rig) {
+    for (std::size_t b = 0; b < rig->busCount(); ++b)
+      busy1.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
+  }
+  // ---- the safe exit: the drives stopped and left in the NMT state of hardware.safe_exit ----
+  const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
 
   // ---- summary ----
   run::RunSummary s;
@@ -357,28 +368,57 @@ int runMain(int argc, char** argv) {
   for (std::size_t b = 0; b < rh.buses.size(); ++b) {
     double load = rh.buses[b].utilisation_worst;
     if (rig && loop_s > 0.0) {
-      load = static_cast<double>(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns) - busy0[b]) * 1e-9 /
-             loop_s;
+      load = static_cast<double>(busy1[b] - busy0[b]) * 1e-9 / loop_s;
     }
     s.bus_load.emplace_back(rh.buses[b].decl.name, load);
   }
   s.faults = faults.records();
+  // The drivers' own text: what stopped the controller, every fault event, each injected fault's.
+  s.safe_stop_driver = ctrl.stopDescription();
+  for (std::size_t i = 0; i < ctrl.faultEventCount(); ++i) {
+    const loop::Controller::FaultEvent& e = ctrl.faultEvent(i);
+    char at[64];
+    std::snprintf(at, sizeof at, "t = %.4f s (cycle %llu) ", static_cast<double>(e.t) * 1e-9,
+                  static_cast<unsigned long long>(e.cycle));
+    s.fault_events.push_back(at + *e.where + ": " + loop::Controller::describe(e));
+  }
+  for (const loop::FaultRecord& r : s.faults) {
+    std::string on_device;
+    for (std::size_t i = 0; i < ctrl.faultEventCount(); ++i) {
+      const loop::Controller::FaultEvent& e = ctrl.faultEvent(i);
+      if (*e.where != r.device || r.injected_at_s < 0.0 ||
+          static_cast<double>(e.t) * 1e-9 + 1e-9 < r.injected_at_s)
+        continue;
+      on_device += (on_device.empty() ? "" : "; ") + loop::Controller::describe(e);
+    }
+    s.fault_driver_text.push_back(on_device);
+  }
+  s.safe_exit_done = exited.done;
+  s.safe_exit_cycles = exited.cycles;
+  if (!run::writeFaultLog(s, o.out + "/faults.log")) throw std::runtime_error(o.out + "/faults.log: cannot write");
 #ifdef MRQP_RUN_HAVE_COLLISION
   if (watch.enabled()) {
     s.min_distance_m = watch.minDistance();
     s.delta_s_m = watch.securityDistance();
   }
 #endif
+  s.extra_fields = pen_watch.summaryFields();
   if (!run::writeSummaryJson(s, o.out + "/summary.json"))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
+  if (!estimator_run.appendSummary(o.out + "/summary.json"))
+    throw std::runtime_error(o.out + "/summary.json: cannot add the estimation's fields");
   if (carry && carry->enabled() &&
       !run::appendSummaryFields(o.out + "/summary.json",
                                 carry->summaryFields(o.force_control && admittance.size() > 0)))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
   run::printSummary(s);
+  estimator_run.printSummary();
+  for (const std::string& f : pen_watch.write(o.out, o.plots, nullptr))
+    std::printf("mrqp-run: wrote %s\n", f.c_str());
   if (o.plots) {
     std::string err;
     std::vector<std::string> pngs = run::writePlots(o.out, ring.columns(), o.scene, &err);
+    for (const std::string& f : estimator_run.writePlots(o.out, ring.columns(), &err)) pngs.push_back(f);
     if (carry) {
       std::string carry_err;
       for (const std::string& f : carry->write(o.out, o.scene, &carry_err)) pngs.push_back(f);

@@ -57,28 +57,52 @@ bool writeSummaryJson(const RunSummary& s, const std::string& path) {
   std::string faults = "[";
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const loop::FaultRecord& r = s.faults[i];
-    faults += std::string(i ? "," : "") + "\n    {\"kind\": " + quoted(r.kind) +
-              ", \"device\": " + quoted(r.device) + ", \"injected_at_s\": " + time(r.injected_at_s) +
-              ", \"detected_at_s\": " + time(r.detected_at_s) +
-              ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + "}";
+    faults +=
+        std::string(i ? "," : "") + "\n    {\"kind\": " + quoted(r.kind) +
+        ", \"device\": " + quoted(r.device) + ", \"injected_at_s\": " + time(r.injected_at_s) +
+        ", \"detected_at_s\": " + time(r.detected_at_s) +
+        ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + ", \"driver\": " +
+        (i < s.fault_driver_text.size() && !s.fault_driver_text[i].empty() ? quoted(s.fault_driver_text[i])
+                                                                           : std::string("null")) +
+        "}";
   }
   faults += s.faults.empty() ? "]" : "\n  ]";
-  const std::string collision = std::isfinite(s.min_distance_m) ? ",\n  \"min_distance_m\": " + num(s.min_distance_m) +
-                                                                      ",\n  \"delta_s_m\": " + num(s.delta_s_m)
-                                                                : std::string();
+  std::string events = "[";
+  for (std::size_t i = 0; i < s.fault_events.size(); ++i) {
+    events += std::string(i ? "," : "") + "\n    " + quoted(s.fault_events[i]);
+  }
+  events += s.fault_events.empty() ? "]" : "\n  ]";
+  const std::string safety = ",\n  \"safe_stop_driver\": " +
+                             (s.safe_stop_driver.empty() ? std::string("null") : quoted(s.safe_stop_driver)) +
+                             ",\n  \"fault_events\": " + events +
+                             ",\n  \"safe_exit\": {\"done\": " + (s.safe_exit_done ? "true" : "false") +
+                             ", \"cycles\": " + std::to_string(s.safe_exit_cycles) + "}";
+  const std::string collision =
+      std::isfinite(s.min_distance_m)
+          ? ",\n  \"min_distance_m\": " + num(s.min_distance_m) + ",\n  \"delta_s_m\": " + num(s.delta_s_m)
+          : std::string();
+  std::string extra;  // a scene's own fields (e.g. pen_click_watch.hpp), after the common ones
+  for (const auto& [name, value] : s.extra_fields) extra += ",\n  " + quoted(name) + ": " + value;
   std::fprintf(f,
                "{\n  \"scene\": %s,\n  \"cycles\": %ld,\n  \"period_s\": %s,\n  \"deadline_misses\": %ld,\n"
                "  \"allocations_in_loop\": %ld,\n  \"log_records_dropped\": %ld,\n"
                "  \"cycle_time_us\": {\"median\": %s, \"p99\": %s, \"p999\": %s, \"max\": %s},\n"
                "  \"safe_stop\": %s,\n  \"task_errors_final\": %s,\n  \"joint_tracking_error_max_rad\": %s,\n"
-               "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s%s\n}\n",
+               "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s%s%s%s\n}\n",
                quoted(s.scene).c_str(), s.cycles, num(s.period_s).c_str(), s.deadline_misses,
                s.allocations_in_loop, s.log_records_dropped, num(s.median_us).c_str(), num(s.p99_us).c_str(),
                num(s.p999_us).c_str(), num(s.max_us).c_str(),
                s.safe_stop.empty() ? "null" : quoted(s.safe_stop).c_str(),
                object(s.task_errors_final).c_str(), object(s.joint_tracking_error_max_rad).c_str(),
                object(s.base_estimate_error_m).c_str(), object(s.bus_load).c_str(), faults.c_str(),
-               collision.c_str());
+               safety.c_str(), collision.c_str(), extra.c_str());
+  return std::fclose(f) == 0;
+}
+
+bool writeFaultLog(const RunSummary& s, const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return false;
+  for (const std::string& e : s.fault_events) std::fprintf(f, "%s\n", e.c_str());
   return std::fclose(f) == 0;
 }
 
@@ -97,6 +121,10 @@ void printSummary(const RunSummary& s) {
   std::printf("  allocations in the loop: %ld; log records dropped: %ld\n", s.allocations_in_loop,
               s.log_records_dropped);
   std::printf("  safe stop: %s\n", s.safe_stop.empty() ? "none" : s.safe_stop.c_str());
+  if (!s.safe_stop_driver.empty()) std::printf("    %s\n", s.safe_stop_driver.c_str());
+  for (const std::string& e : s.fault_events) std::printf("  fault event %s\n", e.c_str());
+  std::printf("  safe exit: %s after %ld cycles\n", s.safe_exit_done ? "drives stopped" : "NOT completed",
+              s.safe_exit_cycles);
   for (const loop::FaultRecord& r : s.faults) {
     std::printf("  fault %s on %s: injected %s s, detected %s s, safe state %s s\n", r.kind.c_str(),
                 r.device.c_str(), time(r.injected_at_s).c_str(), time(r.detected_at_s).c_str(),

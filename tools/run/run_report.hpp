@@ -25,10 +25,20 @@ struct RunSummary {
   std::vector<std::pair<std::string, double>> base_estimate_error_m;
   std::vector<std::pair<std::string, double>> bus_load;
   std::vector<loop::FaultRecord> faults;
+  /// The drivers' text (drivers::describeDeviceFaults): of the fault that stopped the controller
+  /// ("DEVICE: text", empty: none), of every fault event of the run ("t = … s (cycle …) DEVICE:
+  /// text"), and per injected fault the events on its device from its injection on.
+  std::string safe_stop_driver;
+  std::vector<std::string> fault_events;
+  std::vector<std::string> fault_driver_text;
+  /// The safe exit after the last cycle (docs/loop.md, "Safety").
+  bool safe_exit_done = false;
+  long safe_exit_cycles = 0;
   /// Collision pairs (docs/collision.md): smallest distance over the run, measured on the plant's
   /// state, and the smallest security distance δs; NaN (left out of the file) without collisions.
   double min_distance_m = std::numeric_limits<double>::quiet_NaN();
   double delta_s_m = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::pair<std::string, std::string>> extra_fields;  ///< a scene's own: name → JSON value text
 };
 
 /// Percentile p (0..1) of sorted values (nearest rank).
@@ -36,6 +46,8 @@ double percentile(const std::vector<double>& sorted, double p);
 
 /// Writes summary.json; false when it cannot be written.
 bool writeSummaryJson(const RunSummary& s, const std::string& path);
+/// DIR/faults.log: the fault events of the run, one per line, with the drivers' text.
+bool writeFaultLog(const RunSummary& s, const std::string& path);
 /// The end-of-run text on stdout.
 void printSummary(const RunSummary& s);
 

@@ -5,6 +5,7 @@
 
 #include <fstream>
 
+#include "collision/geometry_path.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_reader.hpp"
@@ -83,15 +84,6 @@ collision::ShapeSet readCollisionGeometryFile(const std::string& path) {
   return readCollisionGeometryString(readTextFile(path), path);
 }
 
-std::string builtinCollisionGeometry(const std::string& model) {
-#ifdef MRQP_COLLISION_GEOMETRY_DIR
-  const std::string path = std::string(MRQP_COLLISION_GEOMETRY_DIR) + "/" + model + ".yaml";
-  std::ifstream f(path);
-  if (f) return path;
-#else
-  (void)model;
-#endif
-  return "";
-}
+std::string builtinCollisionGeometry(const std::string& model) { return collision::findGeometryFile(model); }
 
 }  // namespace mrqp::scene

@@ -19,7 +19,8 @@ namespace mrqp::scene {
 collision::ShapeSet readCollisionGeometryFile(const std::string& path);
 collision::ShapeSet readCollisionGeometryString(const std::string& text, const std::string& file);
 
-/// The geometry file of a built-in model: <geometry dir>/<model>.yaml ("" when there is none).
+/// The geometry file of a model by name: <model>.yaml along collision::geometrySearchPath()
+/// (MRQP_COLLISION_GEOMETRY_PATH, then the built-in files; "" when there is none).
 std::string builtinCollisionGeometry(const std::string& model);
 
 }  // namespace mrqp::scene

@@ -45,7 +45,8 @@ void EmulatedCia402Drive::resetOd(bool communication_only) noexcept {
       {0x1017, 0, 2, true, 0},           // producer heartbeat time
       {0x1400, 1, 4, true, 0x200u + n},  // RPDO1: valid by default...
       {0x1400, 2, 1, true, 0xFF},
-      {0x1600, 0, 1, true, 1},  // ... mapping only the controlword
+      {0x1400, 5, 2, true, options_.profile.rpdo_timeout_ms},  // RPDO1 event timer: its deadline
+      {0x1600, 0, 1, true, 1},                                 // ... mapping only the controlword
       {0x1600, 1, 4, true, 0x60400010u},
       {0x1600, 2, 4, true, 0},
       {0x1600, 3, 4, true, 0},
@@ -81,6 +82,7 @@ void EmulatedCia402Drive::resetOd(bool communication_only) noexcept {
       {0x6060, 0, 1, true, 0},
       {0x6061, 0, 1, false, 0},
       {0x6041, 0, 2, false, 0},
+      {0x6007, 0, 2, true, options_.profile.abort_connection_option},  // abort connection option
   };
   if (!communication_only) {
     od_count_ = 0;
@@ -196,13 +198,113 @@ TimeNs EmulatedCia402Drive::syncDeadline() const noexcept {
          static_cast<TimeNs>(options_.profile.sync_timeout_factor * static_cast<double>(period_us) * 1000.0);
 }
 
+TimeNs EmulatedCia402Drive::consumerDeadline() const noexcept {
+  const std::uint32_t entry = odValue(0x1016, 1);
+  const std::uint32_t node = (entry >> 16) & 0x7Fu;
+  const std::uint32_t time_ms = entry & 0xFFFFu;
+  if (!options_.profile.heartbeat_consumer || last_master_hb_ == kNever || node == 0u || time_ms == 0u) {
+    return kNever;
+  }
+  return last_master_hb_ + ms(time_ms);
+}
+
+TimeNs EmulatedCia402Drive::rpdoDeadline() const noexcept {
+  const std::uint32_t time_ms = odValue(0x1400, 5);
+  if (time_ms == 0u || last_rpdo_ == kNever || nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL ||
+      state_ != MRQP_FW_CIA402_OPERATION_ENABLED) {
+    return kNever;
+  }
+  return last_rpdo_ + ms(time_ms);
+}
+
 TimeNs EmulatedCia402Drive::nextEvent() const noexcept {
   TimeNs t = boot_at_ < heartbeat_due_ ? boot_at_ : heartbeat_due_;
-  const TimeNs sync = syncDeadline();
-  if (sync != kNever && sync + 1 < t) {
-    t = sync + 1;  // the timeout is a gap longer than the deadline
+  for (const TimeNs deadline : {syncDeadline(), consumerDeadline(), rpdoDeadline()}) {
+    if (deadline != kNever && deadline + 1 < t) {
+      t = deadline + 1;  // a timeout is a gap longer than the deadline
+    }
   }
   return t;
+}
+
+void EmulatedCia402Drive::sendEmcy(std::uint16_t code, TimeNs at) noexcept {
+  mrqp_fw_emcy e{};
+  e.error_code = code;
+  e.error_register = code == 0u ? 0u : MRQP_FW_ERRREG_GENERIC | MRQP_FW_ERRREG_COMMUNICATION;
+  mrqp_fw_frame f;
+  if (!mrqp_fw_pack_failed(mrqp_fw_emcy_pack(options_.node, &e, &f))) {
+    send(f, at, false);
+  }
+}
+
+void EmulatedCia402Drive::errorBehaviour() noexcept {
+  // CiA 301 0x1029:01: 0 pre-operational (from Operational), 1 no change, 2 stopped.
+  const std::uint32_t behaviour = odValue(0x1029, 1);
+  if (behaviour == 0u && nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL) {
+    nmt_ = MRQP_FW_NMT_STATE_PRE_OPERATIONAL;
+  } else if (behaviour == 2u) {
+    nmt_ = MRQP_FW_NMT_STATE_STOPPED;
+  }
+  if (nmt_ != MRQP_FW_NMT_STATE_OPERATIONAL) {
+    last_sync_ = kNever;
+    last_rpdo_ = kNever;
+  }
+}
+
+void EmulatedCia402Drive::connectionReaction(std::uint16_t code) noexcept {
+  // CiA 402 0x6007 (abort connection option code), in Operation enabled: 1 fault (the fault
+  // reaction completes at once: there may be no SYNC any more), 2 disable voltage (transition 9),
+  // 3 quick stop (transition 11).
+  if (state_ != MRQP_FW_CIA402_OPERATION_ENABLED) {
+    return;
+  }
+  switch (odValue(0x6007, 0)) {
+    case 1u:
+      state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT, nullptr);
+      state_ = mrqp_fw_cia402_drive_event(state_, MRQP_FW_CIA402_EV_FAULT_REACTION_DONE, nullptr);
+      error_code_ = code;
+      break;
+    case 2u:
+      state_ = MRQP_FW_CIA402_SWITCH_ON_DISABLED;
+      break;
+    case 3u:
+      state_ = MRQP_FW_CIA402_QUICK_STOP_ACTIVE;
+      break;
+    default:
+      break;
+  }
+}
+
+bool EmulatedCia402Drive::masterHeartbeat(const mrqp_fw_frame& f) const noexcept {
+  const std::uint32_t node = (odValue(0x1016, 1) >> 16) & 0x7Fu;
+  return node != 0u && f.id == MRQP_FW_COB_HEARTBEAT_BASE + node && f.len == 1u;
+}
+
+void EmulatedCia402Drive::onMasterHeartbeat(TimeNs now) noexcept {
+  if (!options_.profile.heartbeat_consumer || master_hb_lost_) {
+    return;
+  }
+  last_master_hb_ = now;
+  if (hb_error_active_ && state_ != MRQP_FW_CIA402_FAULT && state_ != MRQP_FW_CIA402_FAULT_REACTION_ACTIVE) {
+    hb_error_active_ = false;
+    sendEmcy(0, now + options_.response_delay);  // error reset: the heartbeat is back
+  }
+}
+
+void EmulatedCia402Drive::heartbeatError(TimeNs now) noexcept {
+  last_master_hb_ = kNever;  // watched again from the next heartbeat heard
+  hb_error_active_ = true;
+  ++heartbeat_errors_;
+  sendEmcy(MRQP_FW_EMCY_HEARTBEAT_ERROR, now);
+  connectionReaction(MRQP_FW_EMCY_HEARTBEAT_ERROR);
+  errorBehaviour();
+}
+
+void EmulatedCia402Drive::rpdoTimeout(TimeNs now) noexcept {
+  last_rpdo_ = kNever;  // watched again from the next RPDO
+  ++rpdo_timeouts_;
+  sendEmcy(MRQP_FW_EMCY_RPDO_TIMEOUT, now);
+  connectionReaction(MRQP_FW_EMCY_RPDO_TIMEOUT);
 }
 
 void EmulatedCia402Drive::commError(TimeNs now) noexcept {
@@ -260,6 +362,9 @@ void EmulatedCia402Drive::powerOn(TimeNs now) noexcept {
   boot_at_ = now + options_.boot_delay;
   last_sync_ = kNever;
   comm_error_active_ = false;
+  last_master_hb_ = kNever;
+  hb_error_active_ = false;
+  last_rpdo_ = kNever;
   error_code_ = 0;
   controlword_ = 0;
   rpdo_pending_ = false;
@@ -287,6 +392,14 @@ void EmulatedCia402Drive::advance(TimeNs now) noexcept {
   const TimeNs sync = syncDeadline();
   if (sync != kNever && now > sync) {
     commError(now);
+  }
+  const TimeNs consumer = consumerDeadline();
+  if (consumer != kNever && now > consumer) {
+    heartbeatError(now);
+  }
+  const TimeNs rpdo = rpdoDeadline();
+  if (rpdo != kNever && now > rpdo) {
+    rpdoTimeout(now);
   }
   if (boot_at_ <= now) {
     // End of initialisation: boot-up message, then pre-operational.
@@ -323,6 +436,10 @@ EmulatedCia402Drive::Received EmulatedCia402Drive::onFrame(const mrqp_fw_frame& 
   if (boot_at_ != kNever || nmt_ == MRQP_FW_NMT_STATE_BOOTUP) {
     return Received::Nothing;
   }
+  if (masterHeartbeat(f)) {
+    onMasterHeartbeat(now);
+    return Received::Nothing;
+  }
   if (f.id == MRQP_FW_COB_SDO_RX_BASE + options_.node &&
       (nmt_ == MRQP_FW_NMT_STATE_PRE_OPERATIONAL || nmt_ == MRQP_FW_NMT_STATE_OPERATIONAL)) {
     onSdo(f, now);
@@ -342,6 +459,7 @@ EmulatedCia402Drive::Received EmulatedCia402Drive::onFrame(const mrqp_fw_frame& 
       rpdo_position_ = p.target_position;
       rpdo_torque_ = p.target_torque;
       rpdo_pending_ = true;
+      last_rpdo_ = now;
       return Received::Rpdo;
     }
   }
@@ -369,11 +487,15 @@ void EmulatedCia402Drive::onNmt(const mrqp_fw_frame& f, TimeNs now) noexcept {
     boot_at_ = now + options_.boot_delay;
     last_sync_ = kNever;
     comm_error_active_ = false;
+    last_master_hb_ = kNever;
+    hb_error_active_ = false;
+    last_rpdo_ = kNever;
     host_.onNmtReset(application);
     return;
   }
   if (next != MRQP_FW_NMT_STATE_OPERATIONAL) {
-    last_sync_ = kNever;  // SYNC is watched in Operational only
+    last_sync_ = kNever;  // SYNC and RPDOs are watched in Operational only
+    last_rpdo_ = kNever;
   }
   nmt_ = next;
 }
@@ -526,6 +648,7 @@ void EmulatedCia402Drive::onSync(TimeNs now) noexcept {
     if (before == MRQP_FW_CIA402_FAULT && state_ != MRQP_FW_CIA402_FAULT) {
       error_code_ = 0;
       comm_error_active_ = false;
+      hb_error_active_ = false;
       mrqp_fw_emcy e{};
       mrqp_fw_frame f;
       (void)mrqp_fw_emcy_pack(options_.node, &e, &f);  // error reset

@@ -22,7 +22,9 @@
 // Fault switches (off by default; with all off the drive behaves exactly as before they existed):
 // stopHeartbeatAt(), setPdoSilent() (no TPDOs: feedback missing), setSilent() (no frame at
 // all: no heartbeat, no SDO answer, no PDO, no EMCY), corruptPdos(n) (the next n TPDOs one byte
-// short), raiseFault() (EMCY and the CiA 402 Fault state).
+// short), raiseFault() (EMCY and the CiA 402 Fault state), setMasterHeartbeatLost() (the
+// master's heartbeats no longer reach the drive: its heartbeat consumer, where the profile watches
+// 0x1016, times out and the drive reacts as the profile says).
 #pragma once
 
 #include <array>
@@ -102,6 +104,8 @@ class EmulatedCia402Drive {
   void setSilent(bool silent) noexcept { silent_ = silent; }
   /// The next `n` TPDOs are sent one byte short (a corrupt frame to the master).
   void corruptPdos(unsigned n) noexcept { corrupt_left_ = n; }
+  /// The master's heartbeats no longer reach the drive (true) or do again (false).
+  void setMasterHeartbeatLost(bool lost) noexcept { master_hb_lost_ = lost; }
   /// Answer SDO writes to index:sub with this abort code.
   void abortOnWrite(std::uint16_t index, std::uint8_t sub, std::uint32_t code) noexcept;
   /// Report this mode in the TPDO2 mode display instead of 0x6060.
@@ -130,6 +134,9 @@ class EmulatedCia402Drive {
   /// Communication errors (SYNC timeouts) so far; whether one is still active (no SYNC since).
   unsigned commErrors() const noexcept { return comm_errors_; }
   bool commErrorActive() const noexcept { return comm_error_active_; }
+  /// Heartbeat consumer timeouts (EMCY 0x8130) and RPDO timeouts (EMCY 0x8250) so far.
+  unsigned heartbeatErrors() const noexcept { return heartbeat_errors_; }
+  unsigned rpdoTimeouts() const noexcept { return rpdo_timeouts_; }
   const VendorProfile& profile() const noexcept { return options_.profile; }
   bool rpdo1Configured() const noexcept;
   bool tpdo1Configured() const noexcept;
@@ -147,6 +154,15 @@ class EmulatedCia402Drive {
   bool present(std::uint16_t index) const noexcept;
   TimeNs syncDeadline() const noexcept;
   void commError(TimeNs now) noexcept;
+  TimeNs consumerDeadline() const noexcept;
+  TimeNs rpdoDeadline() const noexcept;
+  bool masterHeartbeat(const mrqp_fw_frame& f) const noexcept;
+  void onMasterHeartbeat(TimeNs now) noexcept;
+  void heartbeatError(TimeNs now) noexcept;
+  void rpdoTimeout(TimeNs now) noexcept;
+  void connectionReaction(std::uint16_t code) noexcept;
+  void errorBehaviour() noexcept;
+  void sendEmcy(std::uint16_t code, TimeNs at) noexcept;
   std::uint16_t otherStatusBits() const noexcept;
   Entry* find(std::uint16_t index, std::uint8_t sub) noexcept;
   const Entry* find(std::uint16_t index, std::uint8_t sub) const noexcept;
@@ -188,6 +204,12 @@ class EmulatedCia402Drive {
   TimeNs last_sync_ = kNever;  ///< last SYNC in Operational (kNever: not watching)
   bool comm_error_active_ = false;
   unsigned comm_errors_ = 0;
+  TimeNs last_master_hb_ = kNever;  ///< last master heartbeat heard (kNever: not watching)
+  bool master_hb_lost_ = false;
+  bool hb_error_active_ = false;
+  unsigned heartbeat_errors_ = 0;
+  TimeNs last_rpdo_ = kNever;  ///< last RPDO1 received in Operational (kNever: not watching)
+  unsigned rpdo_timeouts_ = 0;
 };
 
 }  // namespace mrqp::emulation

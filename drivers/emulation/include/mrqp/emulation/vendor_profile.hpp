@@ -7,7 +7,9 @@
 // aborts for absent, read-only and out-of-range objects, the PDO rules of CiA 301, TPDOs that
 // must be written with bit 30 = 1 (no RTR), a SYNC timeout of 1.5 x 0x1006 with EMCY 0x8100 and
 // the error behaviour of 0x1029 (pre-operational), statusword bits 4 and 9 as drives set them,
-// and an identity (0x1018) and device type (0x1000) to read. Plain data, no allocation.
+// and an identity (0x1018) and device type (0x1000) to read. The drive's watch of the master
+// (heartbeat consumer of 0x1016, RPDO timeout of 0x1400:05, with the reaction of 0x6007) is off in
+// both and switched on by itself. Plain data, no allocation.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +48,20 @@ struct VendorProfile {
   /// only from Ready to switch on up (and during quick stop / fault reaction). Off: bit 4 always,
   /// bit 9 never.
   bool statusword_bits = false;
+  /// Watch the master's heartbeat as 0x1016:1 configures it (node id in bits 16..22, consumer time
+  /// in ms in bits 0..15; monitoring starts with the first heartbeat heard): silent for longer is a
+  /// communication error: EMCY 0x8130 (heartbeat error), the behaviour of 0x1029:01 and the CiA 402
+  /// reaction of 0x6007; the error is reset (EMCY 0x0000) when the heartbeat is back and the power
+  /// stage did not fault. Off: 0x1016 is stored and never watched (the drive's old behaviour).
+  bool heartbeat_consumer = false;
+  /// Initial 0x1400:05, RPDO1's event timer used as its deadline (ms, 0: not watched): in
+  /// Operational with the power stage in Operation enabled, no RPDO1 for longer is EMCY 0x8250
+  /// (RPDO timeout) and the CiA 402 reaction of 0x6007 (the NMT state is unchanged).
+  std::uint16_t rpdo_timeout_ms = 0;
+  /// Initial 0x6007, the CiA 402 abort connection option code: what the power stage does on a
+  /// heartbeat or RPDO timeout in Operation enabled (0 nothing, 1 fault, 2 disable voltage,
+  /// 3 quick stop).
+  std::uint8_t abort_connection_option = 1;
   /// Identity (0x1018:1..4) and device type (0x1000), read-only.
   std::uint32_t device_type = 0x00020192u;  ///< CiA 402 servo drive
   std::uint32_t vendor_id = 0x0000029Cu;

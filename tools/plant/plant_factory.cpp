@@ -1,4 +1,4 @@
-// mrqp-run's plant factory (see plant_factory.hpp).
+// The plant factory of mrqp-run and mrqp-plant (see plant_factory.hpp).
 #include "plant_factory.hpp"
 
 #include <stdexcept>

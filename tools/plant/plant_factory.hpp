@@ -1,4 +1,4 @@
-// mrqp-run's plant factory: "ideal" (the problem's own model, loop/ideal_plant.hpp) or "mujoco"
+// The plant factory of mrqp-run and mrqp-plant: "ideal" (the problem's own model, loop/ideal_plant.hpp) or "mujoco"
 // (control/sim, when this build has it; otherwise a clear error).
 #pragma once
 

@@ -1,0 +1,95 @@
+// Online inertial-parameter estimation (paper 1, Sec. IV) on the controller's cycle
+// (docs/estimation.md): one loop::CycleHook that runs an InertialEstimator per entity of the
+// scene's estimation section between the estimate and the QP update.
+//
+// On the robot cycle of the hands that hold an entity (the F/T sample's rate) it
+//   - takes each hand's last fresh F/T sample (sensor axes: what the tool side exerts on the arm
+//     side), removes the tool's weight and turns it into the wrench the hand applies on the
+//     entity about the sensor's origin, world axes: f = m_t g − R f_s, τ = (R c_t) × m_t g − R τ_s;
+//   - maps it through the entity's world-aligned Jacobian at that point: μ = Σ Jᵀ (τ; f) (eq. 51);
+//   - filters the entity's velocity (from the loop's contact-kinematics estimate), its joint
+//     positions (a fixed base; a floating base's pose is used as it is) and μ with one
+//     second-order state-variable filter each (StateVariableFilter): q̈ is the exact derivative of
+//     the filtered velocity, and all terms of Y φ = μ are delayed alike;
+//   - after the filter has settled, steps the InertialEstimator with (q, q̇, q̈, μ) filtered;
+//   - with feed_back, writes the estimated springs (K, C, O) into the QP's model of the entity.
+// It holds (no update) while a hand's sample is stale, a value is not finite, or the controller
+// has stopped. The log gets, per entity, each estimated quantity and its standard deviation.
+//
+// Set-up (the constructor) allocates and throws; onCycle is noexcept and allocation-free.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "estimation/estimation_spec.hpp"
+#include "estimation/inertial_estimator.hpp"
+#include "estimation/regressor_factory.hpp"
+#include "estimation/state_variable_filter.hpp"
+#include "loop/controller.hpp"
+
+namespace mrqp::estimation {
+
+class EstimatorHook final : public loop::CycleHook {
+ public:
+  /// Throws std::invalid_argument when the controller does not match the spec.
+  EstimatorHook(loop::Controller& controller, const EstimationSpec& spec);
+
+  void onCycle(loop::Controller& controller, drivers::TimeNs now) noexcept override;
+
+  int size() const noexcept { return static_cast<int>(slots_.size()); }
+  const EntityEstimationSpec& spec(int i) const noexcept { return slot(i).spec; }
+  const InertialEstimator& estimator(int i) const noexcept { return *slot(i).est; }
+  /// Filter updates done (accepted) for entity i.
+  long updates(int i) const noexcept { return slot(i).updates; }
+  /// The last μ (filtered) of entity i.
+  const Eigen::VectorXd& lastObservation(int i) const noexcept { return slot(i).mu_f.value(); }
+  /// The last filtered velocity and acceleration of entity i.
+  const Eigen::VectorXd& lastVelocity(int i) const noexcept { return slot(i).v_f.value(); }
+  const Eigen::VectorXd& lastAcceleration(int i) const noexcept { return slot(i).v_f.derivative(); }
+
+  /// Estimated mass and CoM (rigid objects; NaN otherwise) and their standard deviations.
+  double mass(int i) const noexcept;
+  double massStd(int i) const noexcept;
+  Eigen::Vector3d com(int i) const noexcept;
+  /// (K, C, O) of spring s of entity i and their standard deviations.
+  Eigen::Vector3d spring(int i, int s) const noexcept;
+  Eigen::Vector3d springStd(int i, int s) const noexcept;
+
+  /// The log's columns of this hook (names) and the values of the last cycle, in that order.
+  const std::vector<std::string>& logColumns() const noexcept { return columns_; }
+  const double* logValues() const noexcept { return values_.data(); }
+
+ private:
+  struct Slot {
+    Slot(const EntityEstimationSpec& s, EntityRegressor r, int nv, int nq, double period);
+    EntityEstimationSpec spec;
+    EntityRegressor regressor;
+    std::unique_ptr<InertialEstimator> est;
+    StateVariableFilter q_f, v_f, mu_f;
+    Eigen::VectorXd mu, q_use;
+    Eigen::MatrixXd J;
+    Eigen::VectorXd sd;  // standard deviations of the full φ (updated after each update)
+    Eigen::MatrixXd BP;  // basis × P (workspace of sd)
+    double period = 0.0, since = 0.0;
+    long updates = 0;
+    int value_offset = 0;  // first of this entity's values in values_
+  };
+  Slot& slot(int i) noexcept { return *slots_[static_cast<std::size_t>(i)]; }
+  const Slot& slot(int i) const noexcept { return *slots_[static_cast<std::size_t>(i)]; }
+  bool observe(loop::Controller& c, Slot& s) noexcept;
+  void robotCycle(loop::Controller& c, Slot& s) noexcept;
+  void writeValues(Slot& s) noexcept;
+  static void updateDeviations(Slot& s) noexcept;
+  static void feedBack(problem::MultiRobotProblem& p, Slot& s) noexcept;
+  static Eigen::Vector3d inFrameOf(const problem::Pose& frame, const Eigen::Vector3d& world_point) noexcept;
+
+  std::vector<std::unique_ptr<Slot>> slots_;
+  std::vector<std::string> columns_;
+  std::vector<double> values_;
+};
+
+}  // namespace mrqp::estimation

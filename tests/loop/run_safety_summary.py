@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""Runs mrqp-run on panda_door with an injected drive fault and checks what summary.json and
+faults.log say about it (docs/loop.md, "Safety"): the drivers' own text of the fault that stopped
+the controller and of the injected fault, and the safe exit after the last cycle.
+
+Usage: run_safety_summary.py MRQP_RUN SCENE OUT_DIR
+The fault is the encoder of panda_joint3 reading NaN at 0.2 s: its firmware raises EMCY 0x7305
+(CiA 402: incremental sensor 1 fault), so the drivers' text must carry that code and the node of
+the drive (3). Checks: exit status 0 (a stop explained by the injected fault), safe_stop set,
+safe_stop_driver and the fault's "driver" naming panda.panda_joint3 and 0x7305, the same text in
+faults.log, the safe exit done, no allocation in the loop.
+"""
+import json
+import subprocess
+import sys
+
+
+def main() -> int:
+    if len(sys.argv) != 4:
+        print(__doc__, file=sys.stderr)
+        return 2
+    run, scene, out = sys.argv[1:4]
+    cmd = [run, scene, "--plant", "ideal", "--out", out, "--no-plots", "--quiet", "--duration", "0.6",
+           "--fault", "nan-feedback@0.2:panda.panda_joint3", "--set", "hardware.robots[0].safe_stop=quick_stop"]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    sys.stdout.write(proc.stdout)
+    sys.stderr.write(proc.stderr)
+    failures = []
+    if proc.returncode != 0:
+        failures.append(f"exit status {proc.returncode}")
+    with open(out + "/summary.json", encoding="utf-8") as f:
+        s = json.load(f)
+    with open(out + "/faults.log", encoding="utf-8") as f:
+        log = f.read()
+    if s["safe_stop"] is None:
+        failures.append("no safe stop")
+    driver = s.get("safe_stop_driver") or ""
+    if not driver.startswith("panda.panda_joint3: ") or "0x7305" not in driver or "node 3" not in driver:
+        failures.append(f"safe_stop_driver: {driver!r}")
+    fault = s["faults"][0]
+    if "0x7305" not in (fault.get("driver") or ""):
+        failures.append(f"faults[0].driver: {fault.get('driver')!r}")
+    if not any("panda.panda_joint3" in e and "0x7305" in e for e in s["fault_events"]):
+        failures.append(f"fault_events: {s['fault_events']!r}")
+    if "panda.panda_joint3: " not in log or "0x7305" not in log:
+        failures.append(f"faults.log: {log!r}")
+    if not s["safe_exit"]["done"]:
+        failures.append(f"safe exit: {s['safe_exit']!r}")
+    if s["allocations_in_loop"] not in (0, -1):
+        failures.append(f"{s['allocations_in_loop']} allocations in the loop")
+    for f in failures:
+        print(f"run_safety_summary: {f}", file=sys.stderr)
+    print(f"run_safety_summary: safe stop {s['safe_stop']!r}; {driver}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
