@@ -306,7 +306,7 @@ int runMain(int argc, char** argv) {
     pen_watch.measure(static_cast<double>(k) * dt);
     if (carry) carry->sample(static_cast<double>(k) * dt);
     if (o.plots && motion.due(static_cast<double>(k) * dt)) motion.capture(static_cast<double>(k) * dt);
-    if (ideal != nullptr) ideal->setFollowing(!ctrl.safeStopped());
+    if (ideal != nullptr) ideal->setFollowing(!ctrl.holding());  // stands still while held
     const drivers::TimeNs total = ctrl.lastTiming().total_ns;
     cycle_us[static_cast<std::size_t>(k)] = static_cast<double>(total) * 1e-3;
     if (!paced && total > period) ++misses;
