@@ -21,11 +21,12 @@
 #ifdef MRQP_RUN_HAVE_COLLISION
 #include "collision/collision_watch.hpp"
 #endif
+#include "carry_watch.hpp"
 #include "estimation/estimation_yaml.hpp"
 #include "estimation_run.hpp"
-#include "carry_watch.hpp"
 #include "force/admittance_hook.hpp"
 #include "force/force_control_yaml.hpp"
+#include "hands_recorder.hpp"
 #include "loop/controller.hpp"
 #include "loop/deadline_clock.hpp"
 #include "loop/device_lifecycle.hpp"
@@ -231,6 +232,9 @@ int runMain(int argc, char** argv) {
     carry = std::make_unique<run::CarryWatch>(sc, *carry_shadow->problem, *plant, trajectory, &admittance,
                                               static_cast<double>(cycles) * dt);
   }
+  // summary.json's `hands`, force.csv and the force plots (docs/force-control.md): the plant's
+  // drive torques only behind simulated buses.
+  run::HandsRecorder hands(admittance, p, sim ? plant.get() : nullptr, cycles, dt);
   run::PenClickWatch pen_watch(spec, models, p, *plant, cycles);  // a pen scene's fields (docs/scenes.md)
 #ifdef MRQP_RUN_HAVE_COLLISION
   // summary.json's min_distance_m: every collision pair measured on the plant's state between
@@ -276,8 +280,8 @@ int runMain(int argc, char** argv) {
   };
   const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), 10.0, next);
   if (!booted.done) {
-    throw std::runtime_error("the devices did not boot and enable within 10 s (flags seen: " +
-                             flagNames(booted.flags) + ")");
+    throw std::runtime_error(
+        "the devices did not boot and enable within 10 s (flags seen: " + flagNames(booted.flags) + ")");
   }
   const long boot = booted.cycles;
   if (!o.quiet)
@@ -299,6 +303,7 @@ int runMain(int argc, char** argv) {
     ctrl.cycle(now);
     armAllocationCounter(false);
     faults.afterCycle();
+    hands.sample(k);
     estimator_run.record(static_cast<double>(k) * dt);
 #ifdef MRQP_RUN_HAVE_COLLISION
     watch.measure(plantState);
@@ -395,7 +400,8 @@ int runMain(int argc, char** argv) {
   }
   s.safe_exit_done = exited.done;
   s.safe_exit_cycles = exited.cycles;
-  if (!run::writeFaultLog(s, o.out + "/faults.log")) throw std::runtime_error(o.out + "/faults.log: cannot write");
+  if (!run::writeFaultLog(s, o.out + "/faults.log"))
+    throw std::runtime_error(o.out + "/faults.log: cannot write");
 #ifdef MRQP_RUN_HAVE_COLLISION
   if (watch.enabled()) {
     s.min_distance_m = watch.minDistance();
@@ -403,6 +409,8 @@ int runMain(int argc, char** argv) {
   }
 #endif
   s.extra_fields = pen_watch.summaryFields();
+  const std::vector<run::HandSummary> hand_summary = hands.summary();
+  if (!hand_summary.empty()) s.extra_fields.emplace_back("hands", run::handsJson(hand_summary));
   if (!run::writeSummaryJson(s, o.out + "/summary.json"))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
   if (!estimator_run.appendSummary(o.out + "/summary.json"))
@@ -412,6 +420,7 @@ int runMain(int argc, char** argv) {
                                 carry->summaryFields(o.force_control && admittance.size() > 0)))
     throw std::runtime_error(o.out + "/summary.json: cannot write");
   run::printSummary(s);
+  run::printHands(hand_summary);
   estimator_run.printSummary();
   for (const std::string& f : pen_watch.write(o.out, o.plots, nullptr))
     std::printf("mrqp-run: wrote %s\n", f.c_str());
@@ -427,6 +436,14 @@ int runMain(int argc, char** argv) {
     if (!err.empty()) std::fprintf(stderr, "mrqp-run: plots: %s\n", err.c_str());
     if (!o.quiet) {
       for (const std::string& f : pngs) std::printf("mrqp-run: plot %s\n", f.c_str());
+    }
+  }
+  if (!hands.empty()) {
+    std::string err;
+    const std::vector<std::string> files = hands.write(o.out, o.scene, o.plots, &err);
+    if (!err.empty()) std::fprintf(stderr, "mrqp-run: force plots: %s\n", err.c_str());
+    if (!o.quiet) {
+      for (const std::string& f : files) std::printf("mrqp-run: force %s\n", f.c_str());
     }
   }
   if (o.plots) {

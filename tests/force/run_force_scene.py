@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""Runs mrqp-run on a force-control scene with the MuJoCo plant and checks its outcome from
+summary.json's `hands` (docs/force-control.md, "The force scenes").
+
+usage: run_force_scene.py MRQP_RUN SCENE OUT_DIR door|press [JVRC_PREREQUISITE_SCENE]
+
+Always checked (a failure fails the test): no allocation in the loop, one `hands` item per
+end-effector of the scene's force_control section with the scene's mode and last user force
+(read from the scene file here, not from the program), and the summary's force_rms_error_n and
+torque_limit_hits recomputed from DIR/force.csv by the definition of docs/force-control.md (an
+independent reading of the per-cycle record).
+
+The outcome (exit status 0, no safe stop, and):
+door  (panda_door_force): the handle hand in mode qp tracks its target: RMS error at most
+      DOOR_RMS_N, the sensed force at the end within DOOR_FINAL_N of the target, no joint at its
+      torque limit, the door within 0.05 rad of its target.
+press (force_press): the direct hand reaches a torque limit (torque_limit_hits > 0) while the qp
+      hand never does, and the qp hand's target (the QP's force) stays below the user's force
+      (the QP saturated it) and is tracked (RMS at most PRESS_RMS_N).
+
+A failed outcome is reported as a skip (exit 77, with the reason) only while a prerequisite is
+missing, measured here (prerequisite_missing): for press, the prerequisite scene (jvrc1_box)
+stops safely on the MuJoCo plant (JVRC-1 does not run there); for both, the same scene with
+--no-force-control stops safely or has drives at their torque limits (the world fights the
+controller before any admittance acts).
+"""
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+DOOR_RMS_N = 1.5
+DOOR_FINAL_N = 1.0
+PRESS_RMS_N = 10.0
+SETTLE_S = 0.5  # the recorder's window (tools/run/hands_recorder.hpp, kSettleS)
+LIMIT_TOLERANCE = 1e-3
+SKIP = 77
+
+
+def scene_force_control(scene):
+    """(name → (mode, last user force)) from the scene file: the force_control items and the
+    timeline's force_control events. A small reader of this file's own layout, independent of
+    the program's YAML reader."""
+    import yaml  # python3-yaml
+
+    with open(scene, encoding="utf-8") as f:
+        doc = yaml.safe_load(f)
+    out = {}
+    for item in doc.get("force_control") or []:
+        out[item["name"]] = [item["mode"], float(item.get("force", 0.0))]
+    for ev in sorted(doc.get("timeline") or [], key=lambda e: e["at"]):
+        if "force_control" in ev:
+            if "mode" in ev:
+                out[ev["force_control"]][0] = ev["mode"]
+            if "force" in ev:
+                out[ev["force_control"]][1] = float(ev["force"])
+    return out
+
+
+def recompute(out_dir, name, dt):
+    """(rms, evaluated cycles, torque-limit cycles) of one end-effector from force.csv (one row
+    per loop cycle): the error counts from SETTLE_S after the start and after each change of the
+    mode or of f^d (mode 0 is off), a cycle hits when |tau| / tau_max >= 1 - LIMIT_TOLERANCE."""
+    with open(os.path.join(out_dir, "force.csv"), encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    settle = round(SETTLE_S / dt)
+    sq, n, hits = 0.0, 0, 0
+    changed_at, last = 0, None
+    for k, r in enumerate(rows):
+        key = (r[name + "_mode"], r[name + "_fd"])
+        if last is not None and key != last:
+            changed_at = k
+        last = key
+        if int(r[name + "_mode"]) != 0 and k >= settle and k - changed_at >= settle:
+            e = float(r[name + "_target"]) - float(r[name + "_measured"])
+            sq += e * e
+            n += 1
+        if float(r[name + "_torque_ratio"]) >= 1.0 - LIMIT_TOLERANCE:
+            hits += 1
+    return (math.sqrt(sq / n) if n else float("nan")), n, hits
+
+
+def run(mrqp_run, scene, out_dir, extra=()):
+    cmd = [mrqp_run, scene, "--plant", "mujoco", "--out", out_dir, "--no-plots", "--quiet", *extra]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    path = os.path.join(out_dir, "summary.json")
+    if not os.path.exists(path):  # the program failed before its summary (e.g. a bad scene)
+        return p, None
+    with open(path, encoding="utf-8") as f:
+        return p, json.load(f)
+
+
+def prerequisite_missing(mrqp_run, scene, out_dir, kind, prerequisite):
+    """Why the outcome cannot be reached yet (a measured reason), or None. For press, JVRC-1 must
+    run on the MuJoCo plant (the prerequisite scene completes its first second without a safe
+    stop); for both, the scene itself must stand without force control: with --no-force-control
+    no safe stop and no drive at its torque limit (else the world fights the controller before
+    any admittance acts: docs/mujoco.md, "The shipped scenes on MuJoCo")."""
+    if kind == "press" and prerequisite:
+        q, s = run(mrqp_run, prerequisite, out_dir + "_prerequisite", ["--duration", "1"])
+        if s is None:
+            print(f"the prerequisite's run failed: {q.stderr.strip()}")
+            return None
+        if s["safe_stop"] is not None:
+            return f"{os.path.basename(prerequisite)} stops on the MuJoCo plant ({s['safe_stop']})"
+    q, s = run(mrqp_run, scene, out_dir + "_without", ["--no-force-control"])
+    if s is None:
+        print(f"the run without force control failed: {q.stderr.strip()}")
+        return None
+    if s["safe_stop"] is not None:
+        return f"without force control the scene stops too ({s['safe_stop']})"
+    hits = [h["torque_limit_hits"] for h in s.get("hands", [])]
+    if any(h > 0 for h in hits):
+        return f"without force control the drives are at their torque limits in {max(hits)} cycles"
+    return None
+
+
+def main():
+    if len(sys.argv) < 5:
+        print(__doc__, file=sys.stderr)
+        return 2
+    mrqp_run, scene, out_dir, kind = sys.argv[1:5]
+    p, s = run(mrqp_run, scene, out_dir)
+    sys.stdout.write(p.stdout)
+    sys.stderr.write(p.stderr)
+    if s is None:
+        print(f"run_force_scene: {os.path.basename(scene)}: no summary.json (exit {p.returncode})", file=sys.stderr)
+        return 1
+    failures = []  # of the run's consistency: never skipped
+    outcome = []  # of the scene's outcome
+    if p.returncode != 0:
+        outcome.append(f"exit status {p.returncode}")
+    if s["safe_stop"] is not None:
+        outcome.append(f"safe stop: {s['safe_stop']}")
+    if s["allocations_in_loop"] not in (0, -1):
+        failures.append(f"{s['allocations_in_loop']} allocations in the loop")
+    hands = {h["name"]: h for h in s.get("hands", [])}
+    want = scene_force_control(scene)
+    if set(hands) != set(want):
+        failures.append(f"hands {sorted(hands)}, the scene has {sorted(want)}")
+    for name, (mode, force) in want.items():
+        h = hands.get(name)
+        if h is None:
+            continue
+        print(f"{name}: mode {h['mode']}, f^d {h['force_target_n']} N, target {h['target_final_n']} N, "
+              f"sensed {h['measured_final_n']} N, rms {h['force_rms_error_n']} N over "
+              f"{h['evaluated_cycles']} cycles, torque-limit cycles {h['torque_limit_hits']}, "
+              f"largest |tau|/tau_max {h['torque_ratio_max']}")
+        if h["mode"] != mode or abs(h["force_target_n"] - force) > 1e-9:
+            failures.append(f"{name}: mode {h['mode']} f^d {h['force_target_n']}, the scene says {mode} {force}")
+        rms, n, hits = recompute(out_dir, name, s["period_s"])
+        summary_rms = h["force_rms_error_n"] if h["force_rms_error_n"] is not None else float("nan")
+        same = (n == 0 and math.isnan(summary_rms)) or math.isclose(rms, summary_rms, rel_tol=1e-4, abs_tol=1e-6)
+        if n != h["evaluated_cycles"] or not same:
+            failures.append(f"{name}: force.csv gives rms {rms} over {n} cycles, summary {h['force_rms_error_n']} "
+                            f"over {h['evaluated_cycles']}")
+        if hits != h["torque_limit_hits"]:
+            failures.append(f"{name}: force.csv gives {hits} torque-limit cycles, summary {h['torque_limit_hits']}")
+
+    if kind == "door":
+        h = hands.get("handle_hand", {})
+        if not h.get("force_rms_error_n", math.inf) <= DOOR_RMS_N:
+            outcome.append(f"handle_hand: rms error {h.get('force_rms_error_n')} N > {DOOR_RMS_N}")
+        if not abs(h.get("measured_final_n", math.inf) - h.get("target_final_n", 0.0)) <= DOOR_FINAL_N:
+            outcome.append("handle_hand: the sensed force does not end on its target")
+        if h.get("torque_limit_hits") != 0:
+            outcome.append(f"handle_hand: {h.get('torque_limit_hits')} cycles at a torque limit")
+        door = s["task_errors_final"].get("door_angle", math.inf)
+        if not door <= 0.05:
+            outcome.append(f"door_angle error {door} rad > 0.05")
+    elif kind == "press":
+        direct = [h for h in hands.values() if h["mode"] == "direct"]
+        qp = [h for h in hands.values() if h["mode"] == "qp"]
+        if len(direct) != 1 or len(qp) != 1:
+            outcome.append("force_press needs one direct and one qp hand")
+        else:
+            d, q = direct[0], qp[0]
+            if not d["torque_limit_hits"] > 0:
+                outcome.append(f"{d['name']} (direct): no joint reached its torque limit")
+            if q["torque_limit_hits"] != 0:
+                outcome.append(f"{q['name']} (qp): {q['torque_limit_hits']} cycles at a torque limit")
+            if not q["target_final_n"] < q["force_target_n"]:
+                outcome.append(f"{q['name']} (qp): the QP's force {q['target_final_n']} is not below f^d")
+            if not q["force_rms_error_n"] <= PRESS_RMS_N:
+                outcome.append(f"{q['name']} (qp): rms error {q['force_rms_error_n']} N > {PRESS_RMS_N}")
+    else:
+        failures.append(f"unknown kind {kind}")
+    for f in failures:
+        print(f"run_force_scene: {os.path.basename(scene)}: {f}", file=sys.stderr)
+    if failures:
+        return 1
+    if not outcome:
+        return 0
+    for f in outcome:
+        print(f"run_force_scene: {os.path.basename(scene)}: outcome: {f}")
+    missing = prerequisite_missing(mrqp_run, scene, out_dir, kind, sys.argv[5] if len(sys.argv) > 5 else None)
+    if missing:
+        print(f"SKIP: the outcome is not met and its prerequisite is missing: {missing}")
+        return SKIP
+    for f in outcome:
+        print(f"run_force_scene: {os.path.basename(scene)}: {f}", file=sys.stderr)
+    return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
