@@ -128,7 +128,7 @@ void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& link
   problem::Entity& e = p_.entity(t.entity);
   double worst = 0.0;
   for (int it = 0; it <= iterations_; ++it) {
-    e.update();
+    e.updateKinematics();
     worst = 0.0;
     for (int i = 0; i < n; ++i) {
       const int c = links[static_cast<std::size_t>(i)];
@@ -206,7 +206,7 @@ void ContactEstimator::fuseImu(Target& t, const std::array<int, kMaxLinks>& link
   // The reference orientation: the contacts' fit of all six base coordinates, else the IMU's
   // attitude output through the IMU frame's pose in the base (from the joints).
   if (n > 0) fitPose(t, links, n);
-  e.update();
+  e.updateKinematics();
   auto q = e.q();
   const Eigen::Quaterniond q_base(q(3), q(4), q(5), q(6));
   const Eigen::Matrix3d R_base_imu =
@@ -245,7 +245,7 @@ void ContactEstimator::estimate() noexcept {
     }
   }
   if (any_new) {
-    for (int e = 0; e < p_.entityCount(); ++e) p_.entity(e).update();
+    for (int e = 0; e < p_.entityCount(); ++e) p_.entity(e).updateKinematics();
     for (int c = 0; c < p_.contactCapacity(); ++c) {
       Frozen& f = frozen_[static_cast<std::size_t>(c)];
       if (!p_.contactActive(c) || f.recorded) continue;
@@ -268,7 +268,7 @@ void ContactEstimator::estimate() noexcept {
     // The other sides' frame poses at their current (measured or estimated) state.
     for (int e = 0; e < p_.entityCount(); ++e) {
       if (known_[static_cast<std::size_t>(e)] == 1) {
-        p_.entity(e).update();
+        p_.entity(e).updateKinematics();
         known_[static_cast<std::size_t>(e)] = 2;  // updated
       }
     }

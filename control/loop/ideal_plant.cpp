@@ -55,7 +55,7 @@ int IdealPlant::frameHandle(const std::string& entity, const std::string& frame)
   if (f >= 0) {
     // A sensor will read this frame: keep the entity's kinematics current.
     tracked_[static_cast<std::size_t>(e)] = 1;
-    world_->entity(e).update();
+    world_->entity(e).updateKinematics();
   }
   return f < 0 ? -1 : e * kStride + f;
 }
@@ -136,7 +136,7 @@ void IdealPlant::step(double dt) noexcept {
     }
     // A perfect position servo holds its last target between two commands.
     for (int k = 0; k < en.nv(); ++k) applyServo(e * kStride + k);
-    if (tracked_[static_cast<std::size_t>(e)]) en.update();
+    if (tracked_[static_cast<std::size_t>(e)]) en.updateKinematics();
   }
   if (ground_) ground_->estimate();
   time_ += dt;

@@ -98,6 +98,10 @@ class Entity {
   /// Evaluates kinematics and dynamics at the current (q, v): frame poses, M, N (with springs),
   /// CoM, its Jacobian and bias. Call once per cycle before the queries below.
   void update() noexcept;
+  /// Evaluates the kinematics alone at the current (q, v): frame poses, frame Jacobians and their
+  /// J̇v, not M, N or the CoM. For a world that is only looked at (a plant's sensors, a contact
+  /// fit); the dynamic quantities keep the values of the last update().
+  void updateKinematics() noexcept { computeKinematics(); }
 
   const Eigen::MatrixXd& massMatrix() const noexcept { return M_; }
   /// N(q, v) + spring torques: everything on the left of eq. 1 that does not multiply q̈.
@@ -124,6 +128,8 @@ class Entity {
   /// Model hooks for update(): at the state (q_, v_) with gravity expressed in the model's base
   /// frame, fill M_, N_ (without springs), com_, Jc_ and com_bias_ in world axes.
   virtual void computeDynamics() noexcept = 0;
+  /// The kinematic part of computeDynamics (frame poses and velocities); by default all of it.
+  virtual void computeKinematics() noexcept { computeDynamics(); }
   virtual void integrateConfiguration(double dt) noexcept = 0;
 
   std::string name_;

@@ -94,12 +94,15 @@ class ModelEntity final : public Entity {
   }
 
  private:
-  void computeDynamics() noexcept override {
+  void computeKinematics() noexcept override {
     // Gravity in the model's own world: the base frame of a fixed-base entity.
     d_.gravity.noalias() = floating_ ? gravity_ : Eigen::Vector3d(base_.R.transpose() * gravity_);
     qf_ = q_;
     vf_ = v_;
     Model::fk(d_, qf_, vf_);
+  }
+  void computeDynamics() noexcept override {
+    computeKinematics();
     Model::crba(d_, qf_, Mf_);
     Model::nle(d_, qf_, vf_, Nf_);
     M_ = Mf_;
