@@ -44,7 +44,9 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
       options_(options),
       dt_(problem.settings().dt),
       fatal_(options.fatal_flags != 0u ? options.fatal_flags : kDefaultFatal),
-      feedback_missing_cycles_(hw.feedback_missing_cycles) {
+      feedback_missing_cycles_(hw.feedback_missing_cycles),
+      loss_window_(hw.frame_loss_window),
+      loss_limit_(hw.frame_loss_limit) {
   flag_first_.fill(-1);
   if (buses.size() != hw.buses.size()) {
     throw std::invalid_argument("controller: " + std::to_string(buses.size()) + " buses given for " +
@@ -177,9 +179,9 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       const drivers::JointFeedback fb = j.device->joint(j.index);
       const bool missing = !fb.valid || !fb.fresh;
       // Frame loss: the rate of robot cycles without fresh feedback, averaged over
-      // options_.loss_window cycles, may not exceed options_.loss_limit.
-      r.miss_rate[i] += ((missing ? 1.0 : 0.0) - r.miss_rate[i]) / options_.loss_window;
-      if (r.miss_rate[i] > options_.loss_limit) {
+      // loss_window_ cycles, may not exceed loss_limit_.
+      r.miss_rate[i] += ((missing ? 1.0 : 0.0) - r.miss_rate[i]) / loss_window_;
+      if (r.miss_rate[i] > loss_limit_) {
         staleJoint(r, i, fault::kSampleLost, now);
       }
       if (missing) {

@@ -64,10 +64,6 @@ const char* stopReasonStr(StopReason reason) noexcept;
 
 struct ControllerOptions {
   double brake_damping = 5.0;  ///< N·m·s/rad: torque drives brake with τ = −D q̇
-  /// Frame loss: robot cycles averaged (exponentially) for the rate of missing feedback, and the
-  /// largest rate accepted (a drive losing more of its feedback frames is a stale sensor).
-  double loss_window = 100.0;
-  double loss_limit = 0.02;
   /// Objects, mechanisms and floating bases from contact kinematics (else: the prediction).
   bool contact_estimation = true;
   /// Driver fault flags that stop the controller (others are logged only).
@@ -208,6 +204,9 @@ class Controller {
   double dt_;
   std::uint32_t fatal_;
   int feedback_missing_cycles_;
+  // Frame loss (hardware section's frame_loss): robot cycles averaged (exponentially) for the rate
+  // of missing feedback, and the largest rate accepted (a drive losing more is a stale sensor).
+  double loss_window_, loss_limit_;
   std::vector<std::unique_ptr<drivers::BusRouter>> routers_;
   std::vector<RobotIo> robots_;
   std::vector<std::uint8_t> commanded_;  ///< per robot: state: commanded (no feedback correction)

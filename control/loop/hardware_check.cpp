@@ -40,6 +40,8 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
   ResolvedHardware out;
   out.heartbeat_timeout_s = spec.heartbeat_timeout_s;
   out.feedback_missing_cycles = spec.feedback_missing_cycles;
+  out.frame_loss_window = spec.frame_loss_window;
+  out.frame_loss_limit = spec.frame_loss_limit;
   out.controller_heartbeat = spec.controller_heartbeat;
   out.recovery = spec.recovery;
   out.safe_exit = spec.safe_exit;

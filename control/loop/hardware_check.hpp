@@ -69,6 +69,8 @@ struct ResolvedHardware {
   std::vector<ResolvedRobot> robots;
   double heartbeat_timeout_s = 0.25;
   int feedback_missing_cycles = 3;
+  double frame_loss_window = 100.0;
+  double frame_loss_limit = 0.02;
   ControllerHeartbeatSpec controller_heartbeat;
   RecoverySpec recovery;
   SafeExitSpec safe_exit;

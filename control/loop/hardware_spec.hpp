@@ -102,6 +102,8 @@ struct HardwareSpec {
   bool present = false;               ///< the scene has a hardware section
   double heartbeat_timeout_s = 0.25;  ///< consumer time of the drives' heartbeats
   int feedback_missing_cycles = 3;    ///< robot cycles without feedback → fault
+  double frame_loss_window = 100.0;   ///< robot cycles of the frame-loss rate's average
+  double frame_loss_limit = 0.02;     ///< largest rate of robot cycles without fresh feedback
   ControllerHeartbeatSpec controller_heartbeat;
   RecoverySpec recovery;
   SafeExitSpec safe_exit;

@@ -226,13 +226,21 @@ SafeExitSpec readSafeExit(const Reader& r, const YAML::Node& n, const std::strin
 
 HardwareSpec readHardware(const Reader& r, const YAML::Node& n) {
   const Map m(r, n, "hardware",
-              {"heartbeat_timeout", "feedback_missing_cycles", "controller_heartbeat", "recovery",
-               "safe_exit", "buses", "robots"});
+              {"heartbeat_timeout", "feedback_missing_cycles", "frame_loss", "controller_heartbeat",
+               "recovery", "safe_exit", "buses", "robots"});
   HardwareSpec h;
   h.present = true;
   h.source = m.source();
   h.heartbeat_timeout_s = m.number("heartbeat_timeout", Bound::Positive, 0.25);
   h.feedback_missing_cycles = m.integer("feedback_missing_cycles", 1, 1000, 3);
+  if (const YAML::Node* c = m.find("frame_loss")) {
+    const Map fl(r, *c, m.at("frame_loss"), {"window", "limit"});
+    h.frame_loss_window = static_cast<double>(fl.integer("window", 1, 100000, 100));
+    h.frame_loss_limit = fl.number("limit", Bound::Positive, 0.02);
+    if (h.frame_loss_limit > 1.0) {
+      r.fail((*c)["limit"], fl.at("limit"), "expected a fraction of robot cycles, at most 1");
+    }
+  }
   if (const YAML::Node* c = m.find("controller_heartbeat")) {
     h.controller_heartbeat = readControllerHeartbeat(r, *c, m.at("controller_heartbeat"));
   }

@@ -136,3 +136,22 @@ TEST_CASE("loop: a robot's joint state is measured by default, or commanded", "[
   CHECK(errorOf(kBuses + robot + "      state: estimated\n" + kDrives) ==
         "s.yaml:19: hardware.robots[0].state: expected measured or commanded, got \"estimated\"");
 }
+
+TEST_CASE("loop: the frame-loss limit and its window come from the hardware section", "[loop][hardware]") {
+  const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";
+  const loop::ResolvedHardware d = resolve(kBuses + robot + kDrives);
+  CHECK(d.frame_loss_window == 100.0);
+  CHECK(d.frame_loss_limit == 0.02);
+  // "hardware:" is line 12; frame_loss is line 13.
+  const std::string with = "hardware:\n  frame_loss: {window: 20, limit: 0.25}\n" + kBuses.substr(10);
+  const loop::ResolvedHardware r = resolve(with + robot + kDrives);
+  CHECK(r.frame_loss_window == 20.0);
+  CHECK(r.frame_loss_limit == 0.25);
+  CHECK(
+      errorOf("hardware:\n  frame_loss: {window: 20, limit: 1.5}\n" + kBuses.substr(10) + robot + kDrives) ==
+      "s.yaml:13: hardware.frame_loss.limit: expected a fraction of robot cycles, at most 1");
+  CHECK(errorOf("hardware:\n  frame_loss: {window: 0}\n" + kBuses.substr(10) + robot + kDrives) ==
+        "s.yaml:13: hardware.frame_loss.window: expected an integer in [1, 100000], got 0");
+  CHECK(errorOf("hardware:\n  frame_loss: {rate: 0.1}\n" + kBuses.substr(10) + robot + kDrives) ==
+        "s.yaml:13: hardware.frame_loss.rate: unknown key");
+}
