@@ -13,7 +13,6 @@
 
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -26,6 +25,7 @@
 #include "loop/ideal_plant.hpp"
 #include "loop/scene_override.hpp"
 #include "plant_factory.hpp"
+#include "run_options.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/yaml_reader.hpp"
@@ -56,24 +56,9 @@ struct Options {
   bool quiet = false;
 };
 
-std::vector<std::string> splitComma(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t c = s.find(',', start);
-    out.push_back(s.substr(start, c == std::string::npos ? std::string::npos : c - start));
-    if (out.back().empty()) throw std::invalid_argument("--bus: empty interface name in '" + s + "'");
-    if (c == std::string::npos) return out;
-    start = c + 1;
-  }
-}
-
-double parseNumber(const std::string& option, const std::string& v) {
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0' || !(x > 0.0)) {
-    throw std::invalid_argument(option + ": expected a positive number, got '" + v + "'");
-  }
+double positive(const std::string& option, const std::string& v) {
+  const double x = run::optionNumber(option, v);
+  if (!(x > 0.0)) throw std::invalid_argument(option + ": expected a positive number, got '" + v + "'");
   return x;
 }
 
@@ -88,16 +73,16 @@ Options parseOptions(int argc, char** argv, bool* help) {
     if (a == "-h" || a == "--help") {
       *help = true;
     } else if (a == "--bus") {
-      o.buses = splitComma(value());
+      o.buses = run::interfaceList(a, value());
     } else if (a == "--plant") {
       o.plant = value();
       if (o.plant != "ideal" && o.plant != "mujoco") {
         throw std::invalid_argument("--plant: expected ideal or mujoco, got '" + o.plant + "'");
       }
     } else if (a == "--duration") {
-      o.duration = parseNumber(a, value());
+      o.duration = positive(a, value());
     } else if (a == "--step-us") {
-      o.step_us = static_cast<long>(parseNumber(a, value()));
+      o.step_us = static_cast<long>(positive(a, value()));
       if (o.step_us < 50 || o.step_us > 10000) throw std::invalid_argument("--step-us: expected 50 to 10000");
     } else if (a == "--set") {
       o.sets.push_back(value());

@@ -1,6 +1,7 @@
 // mrqp-run's command line (see run_options.hpp).
 #include "run_options.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -19,16 +20,24 @@ const char* runUsage() noexcept {
          "  --no-force-control: every admittance of the scene's force_control section in mode off.\n";
 }
 
-namespace {
-
-double number(const std::string& opt, const std::string& v) {
+double optionNumber(const std::string& opt, const std::string& v) {
   char* end = nullptr;
   const double d = std::strtod(v.c_str(), &end);
   if (v.empty() || *end != '\0') throw std::invalid_argument(opt + ": expected a number, got '" + v + "'");
   return d;
 }
 
-}  // namespace
+std::vector<std::string> interfaceList(const std::string& opt, const std::string& v) {
+  std::vector<std::string> out;
+  std::size_t p = 0;
+  while (p <= v.size()) {
+    const std::size_t c = std::min(v.find(',', p), v.size());
+    if (c == p) throw std::invalid_argument(opt + ": empty interface name in '" + v + "'");
+    out.push_back(v.substr(p, c - p));
+    p = c + 1;
+  }
+  return out;
+}
 
 RunOptions parseRunOptions(int argc, char** argv, bool* help) {
   RunOptions o;
@@ -50,22 +59,14 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
         throw std::invalid_argument("--plant: expected mujoco or ideal");
     } else if (a == "--bus") {
       const std::string v = value();
-      if (v != "sim") {
-        std::size_t p = 0;
-        while (p <= v.size()) {
-          const std::size_t c = std::min(v.find(',', p), v.size());
-          if (c == p) throw std::invalid_argument("--bus: empty interface name in '" + v + "'");
-          o.buses.push_back(v.substr(p, c - p));
-          p = c + 1;
-        }
-      }
+      if (v != "sim") o.buses = interfaceList(a, v);
     } else if (a == "--cycles") {
-      const double n = number(a, value());
+      const double n = optionNumber(a, value());
       if (!(n >= 1.0) || n != static_cast<double>(static_cast<long>(n)))
         throw std::invalid_argument("--cycles: expected an integer >= 1");
       o.cycles = static_cast<long>(n);
     } else if (a == "--duration") {
-      o.duration = number(a, value());
+      o.duration = optionNumber(a, value());
       if (!(o.duration > 0.0)) throw std::invalid_argument("--duration: expected seconds > 0");
     } else if (a == "--realtime") {
       o.realtime = true;

@@ -30,4 +30,9 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help);
 
 const char* runUsage() noexcept;
 
+/// The value of option `opt` as a number; std::invalid_argument "OPT: expected a number, got 'V'".
+double optionNumber(const std::string& opt, const std::string& v);
+/// "IF[,IF...]" as a list of interface names; an empty name is an error naming `opt`.
+std::vector<std::string> interfaceList(const std::string& opt, const std::string& v);
+
 }  // namespace mrqp::run
