@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -104,6 +105,11 @@ class LogWriter {
 };
 
 std::string flagNames(std::uint32_t flags) { return drivers::faultFlagsStr(flags); }
+
+/// SIGINT/SIGTERM during the loop: the loop ends after the cycle under way and the safe exit runs
+/// as after the last cycle (docs/loop.md, "Safety").
+volatile std::sig_atomic_t g_interrupted = 0;
+void onInterrupt(int) { g_interrupted = 1; }
 
 /// The loop thread's allocations are counted while armed (tests/support's counting allocator);
 /// a build without it (sanitizers) counts nothing and reports −1.
@@ -278,6 +284,9 @@ int runMain(int argc, char** argv) {
     const drivers::TimeNs deadline = paced ? clock.wait() : 0;
     return sim ? now + period : deadline;
   };
+  // A signal from here on ends the loop (at once, if it comes during the boot) with the safe exit.
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
   const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), 10.0, next);
   if (!booted.done) {
     throw std::runtime_error(
@@ -286,6 +295,7 @@ int runMain(int argc, char** argv) {
   const long boot = booted.cycles;
   if (!o.quiet)
     std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
+  std::fflush(stdout);  // a program that waits for this line sees it now
 
   // ---- the loop ----
   std::vector<std::uint64_t> busy0;
@@ -297,7 +307,13 @@ int runMain(int argc, char** argv) {
   long misses = 0;
   const std::uint64_t overruns0 = clock.overruns();
   const long progress_every = std::max(1L, std::lround(0.5 / dt));
+  const long planned = cycles;
   for (long k = 0; k < cycles; ++k) {
+    if (g_interrupted != 0) {  // the cycles run so far are the run
+      cycles = k;
+      cycle_us.resize(static_cast<std::size_t>(k));
+      break;
+    }
     faults.beforeCycle(static_cast<double>(k) * dt, now);
     armAllocationCounter(true);
     ctrl.cycle(now);
@@ -325,6 +341,9 @@ int runMain(int argc, char** argv) {
     now = next();
   }
   if (!o.quiet) std::fprintf(stderr, "\n");
+  if (cycles < planned) {
+    std::printf("mrqp-run: interrupted by a signal after %ld of %ld cycles: safe exit\n", cycles, planned);
+  }
   if (paced) misses = static_cast<long>(clock.overruns() - overruns0);
   writer.stop();
   const double loop_s = static_cast<double>(now - loop_start) * 1e-9;

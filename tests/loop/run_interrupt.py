@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""SIGINT (and SIGTERM) during mrqp-run's loop: the loop ends after the cycle under way, the drives
+get the safe exit as after a last cycle, and summary.json reports the cycles run (docs/loop.md,
+"Safety").
+
+Usage: run_interrupt.py MRQP_RUN SCENE OUT_DIR
+panda_door runs paced (wall clock) for up to 30 s; the signal comes 1.5 s after the devices are
+ready. Checks: exit status 0, the "interrupted" line, summary.json's cycles fewer than planned and
+more than the cycles of 1 s, the safe exit done, no allocation in the loop, no safe stop.
+"""
+import json
+import signal
+import subprocess
+import sys
+import time
+
+
+def run_once(run, scene, out, sig):
+    cmd = [run, scene, "--plant", "ideal", "--out", out, "--no-plots", "--paced", "--duration", "30"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    ready = False
+    started = time.monotonic()
+    lines = []
+    while time.monotonic() - started < 60:
+        line = proc.stdout.readline()
+        if not line:
+            break
+        lines.append(line)
+        if "devices ready" in line:
+            ready = True
+            break
+    failures = []
+    if not ready:
+        proc.kill()
+        return ["the devices never became ready: " + "".join(lines)]
+    time.sleep(1.5)
+    proc.send_signal(sig)
+    try:
+        rest, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        return ["mrqp-run did not end within 60 s of the signal"]
+    out_text = "".join(lines) + rest
+    sys.stdout.write(out_text)
+    if proc.returncode != 0:
+        failures.append(f"exit status {proc.returncode}: {err}")
+    if "interrupted by a signal" not in out_text:
+        failures.append("no 'interrupted' line")
+    with open(out + "/summary.json", encoding="utf-8") as f:
+        s = json.load(f)
+    planned = round(30.0 / s["period_s"])
+    if not (round(1.0 / s["period_s"]) < s["cycles"] < planned):
+        failures.append(f"cycles {s['cycles']} (planned {planned})")
+    if not s["safe_exit"]["done"]:
+        failures.append(f"safe exit: {s['safe_exit']!r}")
+    if s["safe_stop"] is not None:
+        failures.append(f"safe stop: {s['safe_stop']!r}")
+    if s["allocations_in_loop"] not in (0, -1):
+        failures.append(f"{s['allocations_in_loop']} allocations in the loop")
+    return failures
+
+
+def main() -> int:
+    if len(sys.argv) != 4:
+        print(__doc__, file=sys.stderr)
+        return 2
+    run, scene, out = sys.argv[1:4]
+    failures = []
+    for name, sig in (("SIGINT", signal.SIGINT), ("SIGTERM", signal.SIGTERM)):
+        for f in run_once(run, scene, f"{out}/{name}", sig):
+            failures.append(f"{name}: {f}")
+    for f in failures:
+        print(f"run_interrupt: {f}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
