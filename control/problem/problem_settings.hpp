@@ -60,9 +60,8 @@ inline const char* capacityError(const ProblemSettings& s) noexcept {
                               ? s.max_constraints
                               : static_cast<long long>(s.max_com_dampers) + s.max_joint_inequalities;
   if (slots > kMaxConstraintsCapacity) return "constraint slots (max_constraints) must be at most 1024";
-  const long long rows = s.max_constraint_rows >= 0
-                             ? s.max_constraint_rows
-                             : 16LL * s.max_com_dampers + s.max_joint_inequalities;
+  const long long rows = s.max_constraint_rows >= 0 ? s.max_constraint_rows
+                                                    : 16LL * s.max_com_dampers + s.max_joint_inequalities;
   if (rows > kMaxConstraintRowsCapacity) return "constraint rows (max_constraint_rows) must be at most 4096";
   if (s.max_constraint_equalities > kMaxConstraintEqualitiesCapacity) {
     return "max_constraint_equalities must be at most 1024";

@@ -47,8 +47,8 @@ SettingsSpec readSettings(const Reader& r, const YAML::Node* n) {
   // capacities: at most the problem's limits (problem_settings.hpp, docs/robustness.md)
   s.max_tasks = m.integer("max_tasks", 1, problem::kMaxTasksCapacity, s.max_tasks);
   s.max_contacts = m.integer("max_contacts", 1, problem::kMaxContactsCapacity, s.max_contacts);
-  s.max_contact_generators =
-      m.integer("max_contact_generators", 1, problem::kMaxContactGeneratorsCapacity, s.max_contact_generators);
+  s.max_contact_generators = m.integer("max_contact_generators", 1, problem::kMaxContactGeneratorsCapacity,
+                                       s.max_contact_generators);
   s.contact_stiffness = m.number("contact_stiffness", Bound::NonNegative, s.contact_stiffness);
   s.contact_damping = m.number("contact_damping", Bound::NonNegative, s.contact_damping);
   s.regularisation = m.number("regularisation", Bound::Positive, s.regularisation);

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "counting_allocator.hpp"
 #include "collision/collision_constraint.hpp"
+#include "counting_allocator.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 

@@ -492,7 +492,8 @@ TEST_CASE("bad scene: settings duration negative", "[scene]") {
 }
 
 TEST_CASE("bad scene: settings capacity zero", "[scene]") {
-  expectError("settings_capacity_zero.yaml", 2, "settings.max_contacts", "expected an integer in [1, 64], got 0");
+  expectError("settings_capacity_zero.yaml", 2, "settings.max_contacts",
+              "expected an integer in [1, 64], got 0");
 }
 
 TEST_CASE("bad scene: settings gravity length", "[scene]") {
