@@ -80,11 +80,12 @@ run_scene comanipulation ideal comanipulation
 # The MuJoCo plant behind the emulated drives where the build has MuJoCo (mrqp-render is built
 # with it).
 if cmake --build build/demo -j"$jobs" --target mrqp-render > build/demo-build.log 2>&1; then
-  echo "== the door on the MuJoCo plant (mrqp-run --plant mujoco, docs/mujoco.md)" >&2
+  echo "== the door and JVRC-1 carrying a box on the MuJoCo plant (mrqp-run --plant mujoco, docs/mujoco.md)" >&2
   run_scene panda_door mujoco panda_door_mujoco
+  run_scene jvrc1_box mujoco jvrc1_box_mujoco
   ./build/demo/tools/render/mrqp-render tools/scenes/comanipulation.yaml --out "$root/build/demo/comanipulation" \
     || echo "(rendering failed: no picture of the scene)" >&2
-  echo "(door on MuJoCo: build/demo/panda_door_mujoco/{summary.json,log.csv,*.png,motion.mp4})" >&2
+  echo "(on MuJoCo: build/demo/{panda_door_mujoco,jvrc1_box_mujoco}/{summary.json,log.csv,*.png,motion.mp4})" >&2
 else
   echo "(this build has no MuJoCo: no physics plant run, no rendering of the scene)" >&2
 fi
