@@ -12,14 +12,8 @@ namespace {
 
 using scene::Bound;
 using scene::Map;
+using scene::nameList;
 using scene::Reader;
-
-std::string joined(const std::vector<std::string>& names) {
-  if (names.empty()) return "none";
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
 
 /// The standard deviation of plant.noise.KEY (absent: 0); the plant section's reader checks the rest.
 double plantNoise(const Reader& r, const YAML::Node& doc, const char* key) {
@@ -59,7 +53,7 @@ EstimationHandSpec readHand(const Reader& r, const YAML::Node& n, const std::str
     std::vector<std::string> names;
     for (const auto& [cn, id] : sc.contacts) names.push_back(cn);
     r.fail(m.require("contact"), m.at("contact"),
-           "unknown contact '" + contact + "' (contacts: " + joined(names) + ")");
+           "unknown contact '" + contact + "' (contacts: " + nameList(names) + ")");
   }
   h.contact = it->second;
   const problem::ContactDesc& c = p.contact(h.contact);
@@ -93,7 +87,7 @@ EstimationHandSpec readHand(const Reader& r, const YAML::Node& n, const std::str
   if (h.sensor < 0) {
     r.fail(m.require("sensor"), m.at("sensor"),
            "entity '" + robot_name + "' has no F/T sensor on frame '" + sensor +
-               "' (its F/T sensors: " + joined(sensors) + ")");
+               "' (its F/T sensors: " + nameList(sensors) + ")");
   }
   h.divisor = robot.divisor;
   h.tool_mass = m.number("tool_mass", Bound::NonNegative, 0.0);
@@ -119,7 +113,7 @@ EntityEstimationSpec readEntity(const Reader& r, const YAML::Node& n, const std:
   }
   if (es == nullptr) {
     r.fail(m.require("entity"), m.at("entity"),
-           "unknown entity '" + e.name + "' (entities: " + joined(entities) + ")");
+           "unknown entity '" + e.name + "' (entities: " + nameList(entities) + ")");
   }
   e.entity = p.entityIndex(e.name);
   e.model = es->model;
@@ -167,7 +161,7 @@ EntityEstimationSpec readEntity(const Reader& r, const YAML::Node& n, const std:
         std::vector<std::string> joints;
         for (int j = 0; j < ent.nv() - ent.jointOffset(); ++j) joints.emplace_back(ent.jointName(j));
         r.fail(sm.require("joint"), sm.at("joint"),
-               "entity '" + e.name + "' has no joint '" + s.joint + "' (joints: " + joined(joints) + ")");
+               "entity '" + e.name + "' has no joint '" + s.joint + "' (joints: " + nameList(joints) + ")");
       }
       s.velocity_index = ent.jointOffset() + k;
       for (const EstimatedSpringSpec& o : e.springs) {

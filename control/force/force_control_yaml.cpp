@@ -13,14 +13,8 @@ namespace {
 
 using scene::Bound;
 using scene::Map;
+using scene::nameList;
 using scene::Reader;
-
-std::string joined(const std::vector<std::string>& names) {
-  if (names.empty()) return "none";
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
 
 /// Task id by name, active or declared inactive; −1 when unknown.
 int findTask(const scene::Scene& sc, const std::string& name) {
@@ -49,7 +43,7 @@ std::string taskNames(const scene::Scene& sc, Keep keep) {
     }
   }
   std::sort(out.begin(), out.end());
-  return joined(out);
+  return nameList(out);
 }
 
 bool touches(const problem::ContactDesc& c, int entity) {
@@ -123,7 +117,7 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
     for (const loop::ResolvedRobot& rr : hw.robots) robots.push_back(rr.name);
     r.fail(
         m.require("sensor"), m.at("sensor"),
-        "entity '" + entity + "' has no hardware (robots of the hardware section: " + joined(robots) + ")");
+        "entity '" + entity + "' has no hardware (robots of the hardware section: " + nameList(robots) + ")");
   }
   std::vector<std::string> sensors;
   for (std::size_t i = 0; i < robot->ft_sensors.size(); ++i) {
@@ -136,7 +130,7 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
   if (e.sensor < 0) {
     r.fail(m.require("sensor"), m.at("sensor"),
            "entity '" + entity + "' has no F/T sensor on frame '" + sensor +
-               "' (its F/T sensors: " + joined(sensors) + ")");
+               "' (its F/T sensors: " + nameList(sensors) + ")");
   }
   e.divisor = robot->divisor;
 
@@ -158,7 +152,7 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
     if (it == sc.contacts.end()) {
       std::vector<std::string> names;
       for (const auto& [cn, id] : sc.contacts) names.push_back(cn);
-      r.fail(*c, m.at("contact"), "unknown contact '" + name + "' (contacts: " + joined(names) + ")");
+      r.fail(*c, m.at("contact"), "unknown contact '" + name + "' (contacts: " + nameList(names) + ")");
     }
     e.contact = it->second;
     if (!touches(p.contact(e.contact), e.entity)) {
@@ -263,7 +257,7 @@ ForceControlSpec readForceControl(const std::string& text, const std::string& fi
       }
       if (ev.end_effector < 0) {
         r.fail(m.require("force_control"), m.at("force_control"),
-               "unknown end-effector '" + name + "' (force_control: " + joined(known) + ")");
+               "unknown end-effector '" + name + "' (force_control: " + nameList(known) + ")");
       }
       if (!m.has("mode") && !m.has("force")) r.fail(it, path, "expected 'mode', 'force' or both");
       const EndEffectorSpec& e = out.end_effectors[static_cast<std::size_t>(ev.end_effector)];

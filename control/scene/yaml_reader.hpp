@@ -32,6 +32,14 @@ inline std::string child(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
+/// Names for an error message that lists the valid ones: "a, b, c", or "none".
+inline std::string nameList(const std::vector<std::string>& names) {
+  if (names.empty()) return "none";
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
 inline std::string item(const std::string& path, std::size_t i) {
   return path + "[" + std::to_string(i) + "]";
 }
