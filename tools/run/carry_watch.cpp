@@ -1,5 +1,6 @@
 // What a carrying scene did to its object (see carry_watch.hpp).
 #include "carry_watch.hpp"
+#include "summary_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -100,26 +101,15 @@ void CarryWatch::sample(double t) {
   }
 }
 
-namespace {
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-}  // namespace
-
 std::vector<std::pair<std::string, std::string>> CarryWatch::summaryFields(bool force_control) const {
   std::vector<std::pair<std::string, std::string>> out;
   out.emplace_back("force_control", force_control ? "true" : "false");
   if (!enabled()) return out;
   std::string errors = "[";
   for (std::size_t k = 0; k < waypoint_error_.size(); ++k)
-    errors += (k ? ", " : "") + num(waypoint_error_[k]);
+    errors += (k ? ", " : "") + jsonNumber(waypoint_error_[k]);
   out.emplace_back("box_waypoint_errors_m", errors + "]");
-  out.emplace_back("box_slip_m", num(slip_));
+  out.emplace_back("box_slip_m", jsonNumber(slip_));
   out.emplace_back("box_dropped", dropped_ ? "true" : "false");
   return out;
 }

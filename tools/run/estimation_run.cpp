@@ -1,5 +1,6 @@
 // mrqp-run's part of the estimation section (see estimation_run.hpp).
 #include "estimation_run.hpp"
+#include "summary_fields.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -12,15 +13,9 @@ namespace mrqp::run {
 
 namespace {
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
 std::string kco(const Eigen::Vector3d& v) {
-  return "{\"K\": " + num(v(0)) + ", \"C\": " + num(v(1)) + ", \"O\": " + num(v(2)) + "}";
+  return "{\"K\": " + jsonNumber(v(0)) + ", \"C\": " + jsonNumber(v(1)) + ", \"O\": " + jsonNumber(v(2)) +
+         "}";
 }
 
 int columnOf(const std::vector<std::string>& columns, const std::string& name) {
@@ -77,12 +72,12 @@ std::vector<std::pair<std::string, std::string>> EstimationRun::summaryFields() 
     if (e.estimate != estimation::BodyEstimate::None && !mass_done) {
       mass_done = true;
       const double t_conv = convergedAfter(t_, mass_[static_cast<std::size_t>(i)], e.true_mass, 0.01);
-      out.emplace_back("mass_true_kg", num(e.true_mass));
-      out.emplace_back("mass_initial_kg", num(e.initial_mass));
-      out.emplace_back("mass_estimate_kg", num(hook_->mass(i)));
-      out.emplace_back("mass_std_kg", num(hook_->massStd(i)));
-      out.emplace_back("mass_converged_s", t_conv < 0.0 ? "null" : num(t_conv));
-      out.emplace_back("com_estimate_error_m", num((hook_->com(i) - e.true_com).norm()));
+      out.emplace_back("mass_true_kg", jsonNumber(e.true_mass));
+      out.emplace_back("mass_initial_kg", jsonNumber(e.initial_mass));
+      out.emplace_back("mass_estimate_kg", jsonNumber(hook_->mass(i)));
+      out.emplace_back("mass_std_kg", jsonNumber(hook_->massStd(i)));
+      out.emplace_back("mass_converged_s", t_conv < 0.0 ? "null" : jsonNumber(t_conv));
+      out.emplace_back("com_estimate_error_m", jsonNumber((hook_->com(i) - e.true_com).norm()));
     }
     if (!e.springs.empty() && !spring_done) {
       spring_done = true;

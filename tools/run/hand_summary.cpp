@@ -1,42 +1,23 @@
 // summary.json's `hands` (see hand_summary.hpp).
 #include "hand_summary.hpp"
+#include "summary_fields.hpp"
 
 #include <cmath>
 #include <cstdio>
 
 namespace mrqp::run {
 
-namespace {
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) >= 0x20) out += c;
-  }
-  return out + "\"";
-}
-
-}  // namespace
-
 std::string handsJson(const std::vector<HandSummary>& hands) {
   std::string out = "[";
   for (std::size_t i = 0; i < hands.size(); ++i) {
     const HandSummary& h = hands[i];
-    out += std::string(i ? "," : "") + "\n    {\"name\": " + quoted(h.name) +
-           ", \"mode\": " + quoted(h.mode) + ", \"force_target_n\": " + num(h.force_target_n) +
-           ", \"force_rms_error_n\": " + num(h.force_rms_error_n) +
+    out += std::string(i ? "," : "") + "\n    {\"name\": " + jsonString(h.name) +
+           ", \"mode\": " + jsonString(h.mode) + ", \"force_target_n\": " + jsonNumber(h.force_target_n) +
+           ", \"force_rms_error_n\": " + jsonNumber(h.force_rms_error_n) +
            ", \"torque_limit_hits\": " + std::to_string(h.torque_limit_hits) +
-           ",\n     \"target_final_n\": " + num(h.target_final_n) +
-           ", \"measured_final_n\": " + num(h.measured_final_n) +
-           ", \"torque_ratio_max\": " + num(h.torque_ratio_max) +
+           ",\n     \"target_final_n\": " + jsonNumber(h.target_final_n) +
+           ", \"measured_final_n\": " + jsonNumber(h.measured_final_n) +
+           ", \"torque_ratio_max\": " + jsonNumber(h.torque_ratio_max) +
            ", \"evaluated_cycles\": " + std::to_string(h.evaluated_cycles) + "}";
   }
   return out + (hands.empty() ? "]" : "\n  ]");

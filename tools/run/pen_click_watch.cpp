@@ -1,5 +1,6 @@
 // summary.json's click-pen fields (see pen_click_watch.hpp).
 #include "pen_click_watch.hpp"
+#include "summary_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,12 +11,6 @@
 namespace mrqp::run {
 
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
 
 std::string where(const scene::Source& s) { return s.file + ":" + std::to_string(s.line); }
 
@@ -114,9 +109,9 @@ void PenClickWatch::measure(double t) noexcept {
 
 std::vector<std::pair<std::string, std::string>> PenClickWatch::summaryFields() const {
   if (pen_ < 0) return {};
-  return {{"button_travel_max_m", num(travel_max_)},
-          {"button_travel_required_m", num(travel_required_)},
-          {"pen_slip_m", num(slip_max_)}};
+  return {{"button_travel_max_m", jsonNumber(travel_max_)},
+          {"button_travel_required_m", jsonNumber(travel_required_)},
+          {"pen_slip_m", jsonNumber(slip_max_)}};
 }
 
 std::vector<std::string> PenClickWatch::write(const std::string& dir, bool plot, std::string* error) const {

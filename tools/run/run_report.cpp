@@ -1,5 +1,6 @@
 // mrqp-run's results (see run_report.hpp).
 #include "run_report.hpp"
+#include "summary_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,34 +18,12 @@ double percentile(const std::vector<double>& sorted, double p) {
 
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-std::string time(double v) { return v < 0.0 ? "null" : num(v); }
+std::string time(double v) { return v < 0.0 ? "null" : jsonNumber(v); }
 
 std::string object(const std::vector<std::pair<std::string, double>>& kv) {
   std::string out = "{";
   for (std::size_t i = 0; i < kv.size(); ++i) {
-    out += (i ? ", " : "") + quoted(kv[i].first) + ": " + num(kv[i].second);
+    out += (i ? ", " : "") + jsonString(kv[i].first) + ": " + jsonNumber(kv[i].second);
   }
   return out + "}";
 }
@@ -57,42 +36,43 @@ bool writeSummaryJson(const RunSummary& s, const std::string& path) {
   std::string faults = "[";
   for (std::size_t i = 0; i < s.faults.size(); ++i) {
     const loop::FaultRecord& r = s.faults[i];
-    faults +=
-        std::string(i ? "," : "") + "\n    {\"kind\": " + quoted(r.kind) +
-        ", \"device\": " + quoted(r.device) + ", \"injected_at_s\": " + time(r.injected_at_s) +
-        ", \"detected_at_s\": " + time(r.detected_at_s) +
-        ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + ", \"driver\": " +
-        (i < s.fault_driver_text.size() && !s.fault_driver_text[i].empty() ? quoted(s.fault_driver_text[i])
-                                                                           : std::string("null")) +
-        "}";
+    faults += std::string(i ? "," : "") + "\n    {\"kind\": " + jsonString(r.kind) +
+              ", \"device\": " + jsonString(r.device) + ", \"injected_at_s\": " + time(r.injected_at_s) +
+              ", \"detected_at_s\": " + time(r.detected_at_s) +
+              ", \"safe_state_at_s\": " + time(r.safe_state_at_s) + ", \"driver\": " +
+              (i < s.fault_driver_text.size() && !s.fault_driver_text[i].empty()
+                   ? jsonString(s.fault_driver_text[i])
+                   : std::string("null")) +
+              "}";
   }
   faults += s.faults.empty() ? "]" : "\n  ]";
   std::string events = "[";
   for (std::size_t i = 0; i < s.fault_events.size(); ++i) {
-    events += std::string(i ? "," : "") + "\n    " + quoted(s.fault_events[i]);
+    events += std::string(i ? "," : "") + "\n    " + jsonString(s.fault_events[i]);
   }
   events += s.fault_events.empty() ? "]" : "\n  ]";
-  const std::string safety = ",\n  \"safe_stop_driver\": " +
-                             (s.safe_stop_driver.empty() ? std::string("null") : quoted(s.safe_stop_driver)) +
-                             ",\n  \"fault_events\": " + events +
-                             ",\n  \"safe_exit\": {\"done\": " + (s.safe_exit_done ? "true" : "false") +
-                             ", \"cycles\": " + std::to_string(s.safe_exit_cycles) + "}";
-  const std::string collision =
-      std::isfinite(s.min_distance_m)
-          ? ",\n  \"min_distance_m\": " + num(s.min_distance_m) + ",\n  \"delta_s_m\": " + num(s.delta_s_m)
-          : std::string();
+  const std::string safety =
+      ",\n  \"safe_stop_driver\": " +
+      (s.safe_stop_driver.empty() ? std::string("null") : jsonString(s.safe_stop_driver)) +
+      ",\n  \"fault_events\": " + events +
+      ",\n  \"safe_exit\": {\"done\": " + (s.safe_exit_done ? "true" : "false") +
+      ", \"cycles\": " + std::to_string(s.safe_exit_cycles) + "}";
+  const std::string collision = std::isfinite(s.min_distance_m)
+                                    ? ",\n  \"min_distance_m\": " + jsonNumber(s.min_distance_m) +
+                                          ",\n  \"delta_s_m\": " + jsonNumber(s.delta_s_m)
+                                    : std::string();
   std::string extra;  // a scene's own fields (e.g. pen_click_watch.hpp), after the common ones
-  for (const auto& [name, value] : s.extra_fields) extra += ",\n  " + quoted(name) + ": " + value;
+  for (const auto& [name, value] : s.extra_fields) extra += ",\n  " + jsonString(name) + ": " + value;
   std::fprintf(f,
                "{\n  \"scene\": %s,\n  \"cycles\": %ld,\n  \"period_s\": %s,\n  \"deadline_misses\": %ld,\n"
                "  \"allocations_in_loop\": %ld,\n  \"log_records_dropped\": %ld,\n"
                "  \"cycle_time_us\": {\"median\": %s, \"p99\": %s, \"p999\": %s, \"max\": %s},\n"
                "  \"safe_stop\": %s,\n  \"task_errors_final\": %s,\n  \"joint_tracking_error_max_rad\": %s,\n"
                "  \"base_estimate_error_m\": %s,\n  \"bus_load\": %s,\n  \"faults\": %s%s%s%s\n}\n",
-               quoted(s.scene).c_str(), s.cycles, num(s.period_s).c_str(), s.deadline_misses,
-               s.allocations_in_loop, s.log_records_dropped, num(s.median_us).c_str(), num(s.p99_us).c_str(),
-               num(s.p999_us).c_str(), num(s.max_us).c_str(),
-               s.safe_stop.empty() ? "null" : quoted(s.safe_stop).c_str(),
+               jsonString(s.scene).c_str(), s.cycles, jsonNumber(s.period_s).c_str(), s.deadline_misses,
+               s.allocations_in_loop, s.log_records_dropped, jsonNumber(s.median_us).c_str(),
+               jsonNumber(s.p99_us).c_str(), jsonNumber(s.p999_us).c_str(), jsonNumber(s.max_us).c_str(),
+               s.safe_stop.empty() ? "null" : jsonString(s.safe_stop).c_str(),
                object(s.task_errors_final).c_str(), object(s.joint_tracking_error_max_rad).c_str(),
                object(s.base_estimate_error_m).c_str(), object(s.bus_load).c_str(), faults.c_str(),
                safety.c_str(), collision.c_str(), extra.c_str());

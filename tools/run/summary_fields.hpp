@@ -9,6 +9,11 @@
 
 namespace mrqp::run {
 
+/// A number as JSON text ("%.9g"; null when not finite).
+std::string jsonNumber(double v);
+/// A string as a JSON string literal (quotes, backslashes and control characters escaped).
+std::string jsonString(const std::string& s);
+
 /// Appends `fields` (name, JSON text of the value) to the object of the JSON file at `path`.
 /// False when the file cannot be read or written or does not end with an object's '}'.
 bool appendSummaryFields(const std::string& path,
