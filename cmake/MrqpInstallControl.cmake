@@ -17,7 +17,7 @@ function(mrqp_install_control)
   set(folders)
   # library  header folder of control/ (- for none)
   foreach(pair mrqp_model:model mrqp_qp:qp mrqp_problem:problem mrqp_collision:collision mrqp_yaml:- mrqp_scene:scene
-               mrqp_estimation:estimation mrqp_builtin_models:- mrqp_loop:loop)
+               mrqp_estimation:estimation mrqp_builtin_models:- mrqp_loop_devices:- mrqp_loop:loop)
     string(REPLACE ":" ";" pair "${pair}")
     list(GET pair 0 lib)
     list(GET pair 1 folder)

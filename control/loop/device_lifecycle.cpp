@@ -1,8 +1,6 @@
 // The devices' boot and safe exit (see device_lifecycle.hpp).
 #include "loop/device_lifecycle.hpp"
 
-#include <cmath>
-
 namespace mrqp::loop {
 
 namespace {
@@ -11,14 +9,12 @@ namespace {
 template <class Step>
 LifecycleResult runCycles(drivers::TimeNs& now, drivers::TimeNs period, EmulatedRig* rig, double timeout_s,
                           const NextCycleTime& next, Step step) {
-  LifecycleResult res;
-  const long limit = std::max(1L, std::lround(timeout_s * 1e9 / static_cast<double>(period)));
-  for (; res.cycles < limit && !res.done; ++res.cycles) {
-    res.done = step(now);
-    if (rig != nullptr) rig->advanceTo(now + period);
-    now = next ? next() : now + period;
-  }
-  return res;
+  return runDeviceCycles(
+      now, period, timeout_s, next, step,
+      [rig, period](drivers::TimeNs t) {
+        if (rig != nullptr) rig->advanceTo(t + period);
+      },
+      [] { return false; });
 }
 
 }  // namespace

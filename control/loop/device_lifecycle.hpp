@@ -12,22 +12,11 @@
 // there), else it is now + period. Not real time (called outside the cycle).
 #pragma once
 
-#include <cstdint>
-#include <functional>
-
 #include "loop/controller.hpp"
+#include "loop/device_cycles.hpp"
 #include "loop/emulated_rig.hpp"
 
 namespace mrqp::loop {
-
-/// Returns the time of the next cycle (may wait for it).
-using NextCycleTime = std::function<drivers::TimeNs()>;
-
-struct LifecycleResult {
-  bool done = false;        ///< every device ready (boot) / stopped (exit)
-  long cycles = 0;          ///< cycles run
-  std::uint32_t flags = 0;  ///< fault flags seen meanwhile (drivers::fault::)
-};
 
 /// Boots and enables every device of `controller`; `now` is advanced cycle by cycle.
 LifecycleResult bootDevices(Controller& controller, drivers::TimeNs& now, drivers::TimeNs period,
