@@ -75,6 +75,9 @@ std::vector<SdoWrite> ArmDriver::buildWrites(const ArmDriveConfig& drive) const 
     }
     w(p.comm, 1, 4, kPdoInvalid | cob);
     w(p.comm, 2, 1, MRQP_FW_PDO_TRANSMISSION_SYNC);
+    if (!p.tpdo && config_.rpdo_timeout_ms != 0u) {
+      w(p.comm, 5, 2, config_.rpdo_timeout_ms);  // RPDO1's event timer: its deadline
+    }
     w(p.map, 0, 1, 0);
     std::uint32_t entries[4] = {0, 0, 0, 0};
     const unsigned count = mrqp_fw_arm_pdo_mapping(p.which, entries);

@@ -108,8 +108,8 @@ VendorProfile readProfile(const Reader& r, const YAML::Node& n, const std::strin
   const Map m(r, n, path,
               {"base", "tpdo_count", "abort_absent", "abort_read_only", "range_checks", "min_cycle_us",
                "min_heartbeat_ms", "pdo_rules", "rtr_check", "sync_timeout_factor", "comm_error_behaviour",
-               "comm_error_fault", "statusword_bits", "device_type", "vendor_id", "product_code", "revision",
-               "serial"});
+               "comm_error_fault", "statusword_bits", "heartbeat_consumer", "rpdo_timeout_ms",
+               "abort_connection_option", "device_type", "vendor_id", "product_code", "revision", "serial"});
   if (const YAML::Node* b = m.find("base"); b != nullptr && !b->IsScalar()) {
     r.fail(*b, m.at("base"), "expected lenient or strict, got " + scene::describe(*b));
   }
@@ -135,6 +135,10 @@ VendorProfile readProfile(const Reader& r, const YAML::Node& n, const std::strin
       static_cast<std::uint8_t>(m.integer("comm_error_behaviour", 0, 2, p.comm_error_behaviour));
   p.comm_error_fault = m.boolean("comm_error_fault", p.comm_error_fault);
   p.statusword_bits = m.boolean("statusword_bits", p.statusword_bits);
+  p.heartbeat_consumer = m.boolean("heartbeat_consumer", p.heartbeat_consumer);
+  p.rpdo_timeout_ms = static_cast<std::uint16_t>(u32(m, "rpdo_timeout_ms", 0, 0xFFFF, p.rpdo_timeout_ms));
+  p.abort_connection_option =
+      static_cast<std::uint8_t>(m.integer("abort_connection_option", 0, 3, p.abort_connection_option));
   p.device_type = u32(m, "device_type", 0, 0xFFFFFFFFu, p.device_type);
   p.vendor_id = u32(m, "vendor_id", 0, 0xFFFFFFFFu, p.vendor_id);
   p.product_code = u32(m, "product_code", 0, 0xFFFFFFFFu, p.product_code);
@@ -295,9 +299,12 @@ bool validateConfig(const EmuConfig& c, const std::string& origin, std::string* 
     return fail("duration", "must be in [0, 1e6] s");
   }
   if (c.profile.tpdo_count < 1u || c.profile.tpdo_count > 4u || c.profile.comm_error_behaviour > 2u ||
+      c.profile.abort_connection_option > 3u ||
       !(c.profile.sync_timeout_factor == 0.0 ||
         (c.profile.sync_timeout_factor >= 1.0 && c.profile.sync_timeout_factor <= 100.0))) {
-    return fail("profile", "tpdo_count 1..4, comm_error_behaviour 0..2, sync_timeout_factor 0 or [1, 100]");
+    return fail("profile",
+                "tpdo_count 1..4, comm_error_behaviour 0..2, abort_connection_option 0..3, sync_timeout_factor 0 "
+                "or [1, 100]");
   }
   if (!(c.drop_fraction >= 0.0 && c.drop_fraction <= 1.0)) {
     return fail("faults.drop_fraction", "must be 0..1");
@@ -347,7 +354,10 @@ std::string describeConfig(const EmuConfig& c) {
                                     : std::string("off"))
     << " (0x1029:01 = " << static_cast<unsigned>(p.comm_error_behaviour)
     << (p.comm_error_fault ? ", power stage faults" : "") << "); statusword bits 4/9 "
-    << (p.statusword_bits ? "as drives set them" : "bit 4 always");
+    << (p.statusword_bits ? "as drives set them" : "bit 4 always") << "; heartbeat consumer (0x1016) "
+    << (p.heartbeat_consumer ? "watched" : "not watched") << "; RPDO timeout (0x1400:05) "
+    << (p.rpdo_timeout_ms != 0u ? std::to_string(p.rpdo_timeout_ms) + " ms" : std::string("off"))
+    << "; 0x6007 = " << static_cast<unsigned>(p.abort_connection_option);
   char ids[96];
   std::snprintf(ids, sizeof ids, "; device type 0x%08X, vendor 0x%08X, product 0x%08X, revision 0x%08X\n",
                 p.device_type, p.vendor_id, p.product_code, p.revision);

@@ -11,7 +11,8 @@
 //                Configuring  expedited SDO writes per drive, one in flight per drive (all drives
 //                             in parallel): producer heartbeat 0x1017, consumer heartbeat 0x1016:1
 //                             (when the master sends a heartbeat), communication cycle 0x1006,
-//                             RPDO1/TPDO1/TPDO2 mapping (disable, transmission type 1, map, enable),
+//                             RPDO1/TPDO1/TPDO2 mapping (disable, transmission type 1, map, enable;
+//                             RPDO1's event timer 0x1400:05 when rpdo_timeout_ms is set),
 //                             TPDO3/TPDO4 disabled, modes of operation 0x6060 (CSP 8 / CST 10).
 //                             Optionally first reads device type 0x1000 and identity 0x1018:1..3
 //                             and checks them against the drive's configuration. TPDO COB-IDs are
@@ -134,6 +135,9 @@ struct ArmConfig {
   /// The SYNC timeout factor of the drives, for syncStats().over_timeout (gaps a drive would take
   /// for a lost SYNC).
   double sync_timeout_factor = 1.5;
+  /// != 0: written to 0x1400:05, RPDO1's event timer, which CiA 301 drives take as the RPDO's
+  /// deadline (ms): a drive that watches it reacts when no RPDO1 arrives for longer. 0: not written.
+  std::uint16_t rpdo_timeout_ms = 0;
   /// TPDO COB-IDs with bit 30 = 0 ("RTR allowed"); false (default): bit 30 = 1, as many drives require.
   bool tpdo_rtr_allowed = false;
   /// Abort 0x06020000 answers a write that disables a PDO the drive does not have (TPDO3/4, TPDO2
