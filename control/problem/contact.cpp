@@ -6,11 +6,20 @@
 
 namespace mrqp::problem {
 
-Eigen::Vector3d coneGenerator(const Eigen::Vector3d& n, double mu, int k, int K) noexcept {
+Eigen::Matrix3d contactFrame(const Eigen::Vector3d& n) noexcept {
   // Any unit vector not parallel to n gives t1; t2 completes the right-handed basis.
   const Eigen::Vector3d seed = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d t1 = (seed - seed.dot(n) * n).normalized();
-  const Eigen::Vector3d t2 = n.cross(t1);
+  Eigen::Matrix3d F;
+  F.col(0) = (seed - seed.dot(n) * n).normalized();
+  F.col(1) = n.cross(F.col(0));
+  F.col(2) = n;
+  return F;
+}
+
+Eigen::Vector3d coneGenerator(const Eigen::Vector3d& n, double mu, int k, int K) noexcept {
+  const Eigen::Matrix3d F = contactFrame(n);
+  const Eigen::Vector3d t1 = F.col(0);
+  const Eigen::Vector3d t2 = F.col(1);
   const double th = 2.0 * M_PI * static_cast<double>(k) / static_cast<double>(K);
   return (n + mu * (std::cos(th) * t1 + std::sin(th) * t2)).normalized();
 }
@@ -23,6 +32,10 @@ const char* validateContact(const ContactDesc& c) noexcept {
   if (c.generators < 3 || c.generators > kMaxConeGenerators) return "generators must be 3 to 16";
   if (!(c.friction > 0.0) || !std::isfinite(c.friction)) return "friction must be > 0";
   if (!c.normal.allFinite() || c.normal.norm() < 1e-9) return "the normal must be a non-zero vector";
+  if ((c.free & ~kFreeAll) != 0) return "free directions are 6 bits: translations then rotations";
+  if (c.npoints == 1 && (c.free & kFreeRotations) != 0) {
+    return "a point contact holds no rotation: only its translations can be free";
+  }
   for (int i = 0; i < c.npoints; ++i) {
     if (!c.points[static_cast<std::size_t>(i)].allFinite()) return "a point is not finite";
   }

@@ -480,7 +480,9 @@ void MultiRobotProblem::assembleContacts() noexcept {
       const Eigen::Matrix3d Rb = of.R * c.target_R;
       err.head<3>() = rotationVector(sf.R * Rb.transpose());
       err.tail<3>() = c.c_world - (of.R * c.target_p + of.p);
-      if (c.rows == 6) {
+      if (c.d.free != 0) {
+        writeHeldRows(c, sf.R, Jb, -1.0, A.block(c.row_offset, ob, c.rows, nb));
+      } else if (c.rows == 6) {
         A.block(c.row_offset, ob, 6, nb) = -Jb;
       } else if (c.rows == 3) {
         A.block(c.row_offset, ob, 3, nb) = -Jb.bottomRows<3>();
@@ -488,13 +490,39 @@ void MultiRobotProblem::assembleContacts() noexcept {
     }
     // Relative acceleration = −Kp e − Kd ė (drift correction of the no-slip constraint 15–16).
     const Vector6d rhs = -acc - kp * err - kdv * vel;
-    if (c.rows == 6) {
+    if (c.d.free != 0) {
+      // Rows of the held directions of the contact frame only (world rows rotated into it).
+      writeHeldRows(c, sf.R, Ja, 1.0, A.block(c.row_offset, oa, c.rows, na));
+      const Eigen::Matrix3d Rc = sf.R * contactFrame(c.d.normal);
+      Vector6d rhs_c;
+      rhs_c.head<3>() = Rc.transpose() * rhs.tail<3>();  // translations
+      rhs_c.tail<3>() = Rc.transpose() * rhs.head<3>();   // rotations
+      int r = 0;
+      for (int k = 0; k < 6; ++k) {
+        if ((c.d.held() >> k) & 1u) b(c.row_offset + r++) = rhs_c(k);
+      }
+    } else if (c.rows == 6) {
       A.block(c.row_offset, oa, 6, na) = Ja;
       b.segment<6>(c.row_offset) = rhs;
     } else if (c.rows == 3) {
       A.block(c.row_offset, oa, 3, na) = Ja.bottomRows<3>();
       b.segment<3>(c.row_offset) = rhs.tail<3>();
     }
+  }
+}
+
+void MultiRobotProblem::writeHeldRows(const ContactSlot& c, const Eigen::Matrix3d& R_frame,
+                                      const Eigen::Ref<const Eigen::MatrixXd>& J, double sign,
+                                      Eigen::Ref<Eigen::MatrixXd> rows) noexcept {
+  // Held direction k of the contact frame (t1, t2, n; translations then rotations): the row
+  // sign · dᵀ J_lin (translation along d) or sign · dᵀ J_ang (rotation about d), d in world axes.
+  const Eigen::Matrix3d Rc = R_frame * contactFrame(c.d.normal);
+  const std::uint8_t held = c.d.held();
+  int r = 0;
+  for (int k = 0; k < 6; ++k) {
+    if (((held >> k) & 1u) == 0) continue;
+    const Eigen::Vector3d d = sign * Rc.col(k % 3);
+    rows.row(r++).noalias() = d.transpose() * (k < 3 ? J.bottomRows<3>() : J.topRows<3>());
   }
 }
 

@@ -221,6 +221,11 @@ class MultiRobotProblem {
   int takeConstraintSlot() noexcept;
 
   void establish(ContactSlot& c) noexcept;
+  // The no-slip rows of a contact with free directions: one per held direction of its contact
+  // frame (frame orientation R_frame), sign · (direction)ᵀ J (J: a world 6 × nv Jacobian).
+  static void writeHeldRows(const ContactSlot& c, const Eigen::Matrix3d& R_frame,
+                            const Eigen::Ref<const Eigen::MatrixXd>& J, double sign,
+                            Eigen::Ref<Eigen::MatrixXd> rows) noexcept;
   void layout() noexcept;
   void assembleContacts() noexcept;
   void assembleDynamics() noexcept;
