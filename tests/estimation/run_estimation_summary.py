@@ -10,13 +10,13 @@ test_estimator_hook.cpp checks them against a plant that supplies the holding wr
 
 usage: run_estimation_summary.py MRQP_RUN SCENE OUTDIR
 """
-import csv
-import json
 import math
 import os
 import re
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
 def scene_spring(scene):
@@ -27,12 +27,11 @@ def scene_spring(scene):
 
 def main():
     run, scene, out = sys.argv[1:4]
-    common = [run, scene, "--plant", "ideal", "--duration", "1", "--no-plots", "--quiet"]
-    p = subprocess.run(common + ["--out", out], capture_output=True, text=True)
-    if p.returncode != 0:
-        print(f"exit {p.returncode}: {p.stderr}")
+    r = mrqp_run.run(run, scene, out, plant="ideal", duration=1)
+    if r.returncode != 0:
+        print(f"exit {r.returncode}: {r.stderr}")
         return 1
-    s = json.load(open(os.path.join(out, "summary.json")))
+    s = r.summary
     ok = True
     truth = scene_spring(scene)
     got = [s["spring_true"][k] for k in ("K", "C", "O")]
@@ -48,15 +47,14 @@ def main():
     if s.get("spring_joint") != "door.handle" or not s.get("estimation_updates", {}).get("door", 0) > 0:
         print(f"spring_joint {s.get('spring_joint')}, updates {s.get('estimation_updates')}")
         ok = False
-    with open(os.path.join(out, "log.csv")) as f:
-        head = next(csv.reader(f))
+    head = r.csv_header("log.csv")
     for c in ("est_door_handle_K", "est_door_handle_K_std", "est_door_handle_C", "est_door_handle_O_std",
               "est_door_nis", "est_door_updates"):
         if c not in head:
             print(f"log.csv has no column {c}")
             ok = False
-    p = subprocess.run(common + ["--out", os.path.join(out, "bad"), "--set", "estimation[0].cutoff=500"],
-                       capture_output=True, text=True)
+    p = mrqp_run.run(run, scene, os.path.join(out, "bad"), plant="ideal", duration=1,
+                     args=["--set", "estimation[0].cutoff=500"])
     want = "estimation[0].cutoff: the cutoff 500 Hz is not below half the F/T rate (250 Hz)"
     if p.returncode != 1 or want not in p.stderr or ".yaml:" not in p.stderr:
         print(f"bad cutoff: exit {p.returncode}: {p.stderr}")

@@ -10,8 +10,10 @@ usage: run_force_control.py MRQP_RUN SCENE OUTDIR
 """
 import csv
 import os
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
 def joint_travel(out):
@@ -24,11 +26,10 @@ def joint_travel(out):
 
 def main():
     run, scene, out = sys.argv[1:4]
-    common = [run, scene, "--duration", "1", "--no-plots", "--quiet"]
     travel = {}
     for name, extra in (("with", []), ("without", ["--no-force-control"])):
         d = os.path.join(out, name)
-        p = subprocess.run(common + ["--out", d] + extra, capture_output=True, text=True)
+        p = mrqp_run.run(run, scene, d, duration=1, args=extra)
         if p.returncode != 0:
             print(f"{name}: exit {p.returncode}: {p.stderr}")
             return 1
@@ -36,8 +37,7 @@ def main():
     print(f"largest joint command change in 1 s: with {travel['with']:.3g} rad, "
           f"without {travel['without']:.3g} rad")
     ok = travel["with"] > 1e-3 and travel["without"] < 1e-4
-    p = subprocess.run(common + ["--out", os.path.join(out, "bad"), "--set", "force_control[0].mode=qp"],
-                       capture_output=True, text=True)
+    p = mrqp_run.run(run, scene, os.path.join(out, "bad"), duration=1, args=["--set", "force_control[0].mode=qp"])
     want = "force_control[0].mode: mode 'qp' tracks the QP's force on a contact"
     if p.returncode != 1 or want not in p.stderr or ".yaml:" not in p.stderr:
         print(f"bad mode: exit {p.returncode}: {p.stderr}")

@@ -10,9 +10,11 @@ the drive (3). Checks: exit status 0 (a stop explained by the injected fault), s
 safe_stop_driver and the fault's "driver" naming panda.panda_joint3 and 0x7305, the same text in
 faults.log, the safe exit done, no allocation in the loop.
 """
-import json
-import subprocess
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
 def main() -> int:
@@ -20,18 +22,15 @@ def main() -> int:
         print(__doc__, file=sys.stderr)
         return 2
     run, scene, out = sys.argv[1:4]
-    cmd = [run, scene, "--plant", "ideal", "--out", out, "--no-plots", "--quiet", "--duration", "0.6",
-           "--fault", "nan-feedback@0.2:panda.panda_joint3", "--set", "hardware.robots[0].safe_stop=quick_stop"]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    sys.stdout.write(proc.stdout)
-    sys.stderr.write(proc.stderr)
-    failures = []
-    if proc.returncode != 0:
-        failures.append(f"exit status {proc.returncode}")
-    with open(out + "/summary.json", encoding="utf-8") as f:
-        s = json.load(f)
-    with open(out + "/faults.log", encoding="utf-8") as f:
-        log = f.read()
+    r = mrqp_run.run(run, scene, out, plant="ideal", duration=0.6, echo=True,
+                     args=["--fault", "nan-feedback@0.2:panda.panda_joint3",
+                           "--set", "hardware.robots[0].safe_stop=quick_stop"])
+    failures = r.failures(safe_stop=False, allocations=False)
+    if r.summary is None:
+        print(f"run_safety_summary: {failures}", file=sys.stderr)
+        return 1
+    s = r.summary
+    log = r.text("faults.log")
     if s["safe_stop"] is None:
         failures.append("no safe stop")
     driver = s.get("safe_stop_driver") or ""

@@ -12,32 +12,30 @@ Usage: run_carry_box.py MRQP_RUN SCENE OUT_DIR PLANT TOLERANCE_M SLIP_M WITHOUT
 Both runs: exit status 0, no safe stop, no allocation in the loop, `force_control` as asked, one
 error per waypoint.
 """
-import json
-import subprocess
+import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
-def run(mrqp_run, scene, out, plant, force_control):
-    cmd = [mrqp_run, scene, "--plant", plant, "--out", out, "--no-plots", "--quiet"]
-    if not force_control:
-        cmd.append("--no-force-control")
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    sys.stdout.write(proc.stdout)
-    sys.stderr.write(proc.stderr)
-    with open(out + "/summary.json", encoding="utf-8") as f:
-        return proc.returncode, json.load(f)
+
+def run(program, scene, out, plant, force_control):
+    r = mrqp_run.run(program, scene, out, plant=plant, echo=True, args=[] if force_control else ["--no-force-control"])
+    if r.summary is None:
+        raise mrqp_run.RunError(f"{scene}: no summary.json (exit status {r.returncode})")
+    return r.returncode, r.summary
 
 
 def main() -> int:
     if len(sys.argv) != 8:
         print(__doc__, file=sys.stderr)
         return 2
-    mrqp_run, scene, out, plant, tol, slip_max, without = sys.argv[1:8]
+    program, scene, out, plant, tol, slip_max, without = sys.argv[1:8]
     tol, slip_max = float(tol), float(slip_max)
     failures = []
     for fc in (True, False):
         name = "with force control" if fc else "without force control"
-        code, s = run(mrqp_run, scene, f"{out}/{'fc' if fc else 'no_fc'}", plant, fc)
+        code, s = run(program, scene, f"{out}/{'fc' if fc else 'no_fc'}", plant, fc)
         errors = s.get("box_waypoint_errors_m")
         print(f"run_carry_box: {name}: waypoint errors {errors}, slip {s.get('box_slip_m')}, "
               f"dropped {s.get('box_dropped')}, safe stop {s['safe_stop']}")
