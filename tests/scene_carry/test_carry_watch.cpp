@@ -12,6 +12,7 @@
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
+#include "set_state_plant.hpp"
 #include "summary_fields.hpp"
 #include "temp_dir.hpp"
 #include "waypoint_trajectory.hpp"
@@ -40,50 +41,8 @@ const char* kSection = R"(trajectories:
       - {at: 2.0, position: [0.3, -0.1, 1.1]}
 )";
 
-/// Entity states set by the test; everything else inert.
-class ScriptedPlant final : public loop::Plant {
- public:
-  explicit ScriptedPlant(const problem::MultiRobotProblem& p) {
-    for (int i = 0; i < p.entityCount(); ++i) {
-      names.push_back(p.entity(i).name());
-      q.emplace_back(p.entity(i).q());
-      v.emplace_back(Eigen::VectorXd::Zero(p.entity(i).nv()));
-    }
-  }
-  const char* kind() const noexcept override { return "scripted"; }
-  int entityHandle(const std::string& e) const override {
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == e) return static_cast<int>(i);
-    return -1;
-  }
-  int jointHandle(const std::string&, const std::string&) const override { return -1; }
-  int frameHandle(const std::string&, const std::string&) const override { return -1; }
-  double jointPosition(int) const noexcept override { return 0.0; }
-  double jointVelocity(int) const noexcept override { return 0.0; }
-  double jointTorque(int) const noexcept override { return 0.0; }
-  void setServo(int, const loop::ServoCommand&) noexcept override {}
-  loop::Vector6d sensorWrench(int) const noexcept override { return loop::Vector6d::Zero(); }
-  loop::ImuSample imu(int) const noexcept override { return {}; }
-  void step(double) noexcept override {}
-  double time() const noexcept override { return 0.0; }
-  void entityState(int e, Eigen::Ref<Eigen::VectorXd> qo,
-                   Eigen::Ref<Eigen::VectorXd> vo) const noexcept override {
-    qo = q[static_cast<std::size_t>(e)];
-    vo = v[static_cast<std::size_t>(e)];
-  }
-  /// A rigid object's pose: position and a yaw angle.
-  void place(int e, const Eigen::Vector3d& p, double yaw) {
-    const Eigen::Quaterniond r(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    Eigen::VectorXd& x = q[static_cast<std::size_t>(e)];
-    x.head<3>() = p;
-    x(3) = r.w();
-    x(4) = r.x();
-    x(5) = r.y();
-    x(6) = r.z();
-  }
-  std::vector<std::string> names;
-  std::vector<Eigen::VectorXd> q, v;
-};
+/// A rigid object's orientation: a yaw angle.
+Eigen::Quaterniond yaw(double angle) { return Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ())); }
 
 struct Rig {
   Rig() {
@@ -102,7 +61,7 @@ struct Rig {
 
 TEST_CASE("carry: waypoint errors and slip measured on the plant's states", "[carry]") {
   Rig rig;
-  ScriptedPlant plant(*rig.model.problem);
+  mrqp::testing::SetStatePlant plant(*rig.model.problem);
   run::CarryWatch watch(rig.model, *rig.shadow.problem, plant, rig.trajectory, nullptr, 3.0);
   REQUIRE(watch.enabled());
   // The box follows its reference 4 mm low; the hand, turned by 90° about z, holds it until
@@ -112,9 +71,9 @@ TEST_CASE("carry: waypoint errors and slip measured on the plant's states", "[ca
   for (int k = 0; k <= 3000; ++k) {
     const double t = k * 0.001;
     const Eigen::Vector3d box = rig.trajectory.at(0, t).position + low;
-    plant.place(0, box, 0.0);
+    plant.place(0, box, yaw(0.0));
     const Eigen::Vector3d slip = t >= 1.5 ? Eigen::Vector3d(0.02, 0, 0) : Eigen::Vector3d::Zero();
-    plant.place(1, box + hand_offset - slip, std::acos(-1.0) / 2);
+    plant.place(1, box + hand_offset - slip, yaw(std::acos(-1.0) / 2));
     watch.sample(t);
   }
   REQUIRE(watch.waypointErrors().size() == 2);
@@ -140,15 +99,15 @@ TEST_CASE("carry: a box more than 5 cm below its reference is dropped, a waypoin
           "[carry]") {
   for (const double below : {0.049, 0.051}) {
     Rig rig;
-    ScriptedPlant plant(*rig.model.problem);
+    mrqp::testing::SetStatePlant plant(*rig.model.problem);
     run::CarryWatch watch(rig.model, *rig.shadow.problem, plant, rig.trajectory, nullptr, 1.2);
     for (int k = 0; k <= 1200; ++k) {  // ends before the second waypoint
       const double t = k * 0.001;
       // The box stays on the table while its reference rises 10 cm, then is lifted to `below`
       // under it: it is `below` under the reference from t = 1 s on.
       const double z = std::max(1.0, rig.trajectory.at(0, t).position.z() - below);
-      plant.place(0, Eigen::Vector3d(0.3, 0, z), 0.0);
-      plant.place(1, Eigen::Vector3d(0.3, -0.24, z), 0.0);
+      plant.place(0, Eigen::Vector3d(0.3, 0, z), yaw(0.0));
+      plant.place(1, Eigen::Vector3d(0.3, -0.24, z), yaw(0.0));
       watch.sample(t);
     }
     CHECK(watch.dropped() == (below > run::CarryWatch::kDropMargin));

@@ -9,45 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "loop/plant.hpp"
 #include "pen_click_watch.hpp"
 #include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_yaml.hpp"
+#include "set_state_plant.hpp"
 
 using namespace mrqp;
 
 namespace {
-
-/// A plant that only reports the entity states a test sets.
-class StatePlant final : public loop::Plant {
- public:
-  std::vector<std::string> names;
-  std::vector<Eigen::VectorXd> q;
-
-  const char* kind() const noexcept override { return "test"; }
-  int entityHandle(const std::string& entity) const override {
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (names[i] == entity) return static_cast<int>(i);
-    }
-    return -1;
-  }
-  int jointHandle(const std::string&, const std::string&) const override { return -1; }
-  int frameHandle(const std::string&, const std::string&) const override { return -1; }
-  double jointPosition(int) const noexcept override { return 0.0; }
-  double jointVelocity(int) const noexcept override { return 0.0; }
-  double jointTorque(int) const noexcept override { return 0.0; }
-  void setServo(int, const loop::ServoCommand&) noexcept override {}
-  loop::Vector6d sensorWrench(int) const noexcept override { return loop::Vector6d::Zero(); }
-  loop::ImuSample imu(int) const noexcept override { return {}; }
-  void step(double) noexcept override {}
-  double time() const noexcept override { return 0.0; }
-  void entityState(int entity, Eigen::Ref<Eigen::VectorXd> qo,
-                   Eigen::Ref<Eigen::VectorXd> v) const noexcept override {
-    qo = q[static_cast<std::size_t>(entity)];
-    v.setZero();
-  }
-};
 
 const std::string kScene = std::string(MRQP_SCENES_DIR) + "/pen_click.yaml";
 
@@ -64,9 +34,9 @@ TEST_CASE("PenClickWatch: travel, required travel and slip of the pen in the pal
   REQUIRE(hand >= 0);
   REQUIRE(pen >= 0);
 
-  StatePlant plant;
-  plant.names = {"hand", "pen"};
-  plant.q = {p.entity(hand).q(), p.entity(pen).q()};
+  mrqp::testing::SetStatePlant plant;
+  plant.add("hand", p.entity(hand).q());
+  plant.add("pen", p.entity(pen).q());
   run::PenClickWatch watch(spec, models, p, plant, 10);
   REQUIRE(watch.enabled());
   CHECK(watch.travelRequired() == Approx(0.006 - 1e-4).margin(1e-15));
@@ -77,15 +47,15 @@ TEST_CASE("PenClickWatch: travel, required travel and slip of the pen in the pal
 
   // The pen displaced in the world by d, its button pressed 4 mm, the hand still: slip |d|.
   const Eigen::Vector3d d(0.001, -0.002, 0.0005);
-  plant.q[1].head<3>() += d;
-  plant.q[1](7) = 0.004;
+  plant.q(1).head<3>() += d;
+  plant.q(1)(7) = 0.004;
   watch.measure(0.001);
   CHECK(watch.slipMax() == Approx(d.norm()).epsilon(1e-12));
   CHECK(watch.travelMax() == Approx(0.004).epsilon(1e-12));
 
   // Back, the button at 2 mm: the maxima stay.
-  plant.q[1] = p.entity(pen).q();
-  plant.q[1](7) = 0.002;
+  plant.q(1) = p.entity(pen).q();
+  plant.q(1)(7) = 0.002;
   watch.measure(0.002);
   CHECK(watch.slipMax() == Approx(d.norm()).epsilon(1e-12));
   CHECK(watch.travelMax() == Approx(0.004).epsilon(1e-12));
@@ -105,13 +75,13 @@ TEST_CASE("PenClickWatch: travel, required travel and slip of the pen in the pal
   const Eigen::Matrix3d R = palm1.R * palm0.R.transpose();
   const Eigen::Vector3d pen_p = R * (pen0.p - palm0.p) + palm1.p;
   const Eigen::Quaterniond pen_quat(R * pen0.R);
-  plant.q[0] = h.q();
-  plant.q[1].head<3>() = pen_p;
-  plant.q[1](3) = pen_quat.w();
-  plant.q[1](4) = pen_quat.x();
-  plant.q[1](5) = pen_quat.y();
-  plant.q[1](6) = pen_quat.z();
-  plant.q[1](7) = 0.001;
+  plant.q(0) = h.q();
+  plant.q(1).head<3>() = pen_p;
+  plant.q(1)(3) = pen_quat.w();
+  plant.q(1)(4) = pen_quat.x();
+  plant.q(1)(5) = pen_quat.y();
+  plant.q(1)(6) = pen_quat.z();
+  plant.q(1)(7) = 0.001;
   watch.measure(0.003);
   CHECK(watch.slipMax() == Approx(d.norm()).epsilon(1e-12));
   CHECK((pen_p - pen0.p).norm() > 0.01);  // the pen did move in the world
@@ -128,7 +98,7 @@ TEST_CASE("PenClickWatch: a scene without a pen measures nothing", "[scene_pen]"
   scene::addBuiltinModels(models);
   const scene::SceneSpec spec = scene::loadSceneFile(std::string(MRQP_SCENES_DIR) + "/panda_door.yaml");
   scene::Scene sc = scene::buildScene(spec, models);
-  StatePlant plant;
+  mrqp::testing::SetStatePlant plant;
   run::PenClickWatch watch(spec, models, *sc.problem, plant, 10);
   CHECK_FALSE(watch.enabled());
   watch.measure(0.0);
