@@ -10,6 +10,7 @@
 #include <set>
 
 #include "scene/scene_yaml.hpp"
+#include "scene/yaml_reader.hpp"
 
 namespace mrqp::loop {
 
@@ -92,6 +93,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rr.safe_stop = rh.safe_stop;
     rr.hold_damping = rh.hold_damping;
     rr.state = rh.state;
+    rr.rpdo_timeout_s = rh.rpdo_timeout_s;
     if (rr.entity < 0) {
       fail(rh.source, robotField(r, "entity"), "unknown entity '" + rh.entity + "'");
     }
@@ -134,6 +136,20 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
         d.rated_torque = grp.rated_torque;
         claimNode(bus, d.node, grp.source, field + ".joints[" + std::to_string(j) + "]");
         rob.drives.push_back(d);
+      }
+    }
+    if (rh.rpdo_timeout_s > 0.0) {
+      // The drives' RPDO1 deadline: there must be drives, and a deadline longer than the robot's
+      // cycle (one RPDO per cycle), else a drive times out between two setpoints.
+      const double cycle = dt * rh.divisor;
+      if (rob.drives.empty()) {
+        fail(rh.rpdo_timeout_source, robotField(r, "rpdo_timeout"),
+             "'" + rh.entity + "' has no CiA 402 drives to write 0x1400:05 to");
+      }
+      if (rh.rpdo_timeout_s <= cycle) {
+        fail(rh.rpdo_timeout_source, robotField(r, "rpdo_timeout"),
+             "must exceed the robot's cycle of " + scene::formatNumber(cycle) +
+                 " s (one RPDO per cycle), got " + scene::formatNumber(rh.rpdo_timeout_s));
       }
     }
     std::size_t mit_groups = 0, fd_groups = 0;
@@ -266,6 +282,11 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     if (drives > 0) {
       budget.addArmDrives(drives, true);
       budget.addHeartbeats(drives, 0.1);
+      // The controller's own heartbeat goes to every bus of CiA 402 drives (their 0x1016 watches it).
+      if (out.controller_heartbeat.node != 0) {
+        budget.addPeriodic("controller heartbeat", 1, 1, drivers::FrameFormat::Classic,
+                           out.controller_heartbeat.period_s);
+      }
     }
     if (mit > 0) budget.addMitMotors(mit);
     for (std::uint32_t joints : board_joints) budget.addHandBoard(joints);
@@ -286,7 +307,10 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
   return out;
 }
 
-void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw) {
+void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw, const ResolvedRobot* robot) {
+  if (robot != nullptr && robot->rpdo_timeout_s > 0.0) {
+    config.rpdo_timeout_ms = static_cast<std::uint16_t>(std::lround(robot->rpdo_timeout_s * 1000.0));
+  }
   const ControllerHeartbeatSpec& hb = hw.controller_heartbeat;
   if (hb.node != 0) {
     config.master_node = static_cast<std::uint8_t>(hb.node);

@@ -50,6 +50,7 @@ struct ResolvedRobot {
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
   JointState state = JointState::Measured;
+  double rpdo_timeout_s = 0.0;           ///< > 0: written to the CiA 402 drives' 0x1400:05
   std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
   std::vector<ResolvedDrive> impedance;  ///< MIT motors and FD board joints, in the order of the file
   std::vector<ResolvedSensor> ft_sensors;
@@ -77,9 +78,10 @@ struct ResolvedHardware {
 };
 
 /// The hardware section's controller heartbeat (master node, its period, the drives' consumer
-/// time) and safe exit in an arm driver's configuration; recovery stays the loop's decision
-/// (RecoveryPolicy::Manual).
-void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw);
+/// time) and safe exit in an arm driver's configuration, and `robot`'s RPDO timeout (0x1400:05)
+/// when given; recovery stays the loop's decision (RecoveryPolicy::Manual).
+void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw,
+                       const ResolvedRobot* robot = nullptr);
 
 /// Resolves `spec` against the entities of `problem` for a loop period `dt` (s).
 ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem,

@@ -66,6 +66,11 @@ struct RobotHardware {
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;  ///< 1/s: hold decays the commanded velocity by this rate
   JointState state = JointState::Measured;
+  /// > 0: the deadline of each CiA 402 drive's RPDO1 in seconds, written to 0x1400:05 (its event
+  /// timer, in ms) at boot; a drive that watches it reacts when the controller's setpoints stop.
+  /// 0: not written (the drive's own value stands).
+  double rpdo_timeout_s = 0.0;
+  scene::Source rpdo_timeout_source;
   std::vector<Cia402Group> cia402;
   std::vector<ImpedanceGroup> impedance;
   std::vector<SensorDecl> ft_sensors;

@@ -117,8 +117,8 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"entity", "divisor", "safe_stop", "hold_damping", "state", "cia402", "mit", "fd", "ft_sensors",
-               "imus"});
+              {"entity", "divisor", "safe_stop", "hold_damping", "state", "rpdo_timeout", "cia402", "mit", "fd",
+               "ft_sensors", "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);
@@ -142,6 +142,16 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
     } else {
       r.fail(*s, m.at("state"), "expected measured or commanded, got \"" + v + "\"");
     }
+  }
+  if (const YAML::Node* t = m.find("rpdo_timeout")) {
+    // 0x1400:05 holds milliseconds in 16 bits.
+    rh.rpdo_timeout_s = m.number("rpdo_timeout", Bound::Positive, 0.0);
+    if (rh.rpdo_timeout_s < 0.001 || rh.rpdo_timeout_s > 65.535) {
+      r.fail(*t, m.at("rpdo_timeout"),
+             "expected a time in [0.001, 65.535] s (0x1400:05 holds milliseconds in 16 bits), got " +
+                 scene::describe(*t));
+    }
+    rh.rpdo_timeout_source = r.source(*t);
   }
   auto each = [&](const char* key, auto read) {
     if (const YAML::Node* l = m.find(key)) {

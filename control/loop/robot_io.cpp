@@ -56,7 +56,7 @@ void addArm(RobotIo& r, const RobotBuses& rb, double dt) {
   ac.cycle_period = static_cast<drivers::TimeNs>(std::llround(dt * rb.rr.divisor * 1e9));
   ac.heartbeat_timeout = static_cast<drivers::TimeNs>(std::llround(rb.hw.heartbeat_timeout_s * 1e9));
   ac.feedback_missing_cycles = static_cast<std::uint32_t>(rb.hw.feedback_missing_cycles);
-  applySafetyConfig(ac, rb.hw);  // controller heartbeat, safe exit (controller_safety.cpp)
+  applySafetyConfig(ac, rb.hw, &rb.rr);  // controller heartbeat, safe exit, RPDO timeout
   for (const ResolvedDrive& d : rb.rr.drives) {
     drivers::ArmDriveConfig dc;
     dc.bus = rb.routerIndex(d.bus);

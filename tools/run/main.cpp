@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <functional>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -287,11 +288,34 @@ int runMain(int argc, char** argv) {
   // A signal from here on ends the loop (at once, if it comes during the boot) with the safe exit.
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
-  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), 10.0, next);
+  // From here on every way out (a failed boot, an exception before or during the loop) runs the
+  // same safe exit on what was started (docs/loop.md, "Safety").
+  const double boot_timeout_s = 10.0;
+  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), boot_timeout_s, next);
   if (!booted.done) {
-    throw std::runtime_error(
-        "the devices did not boot and enable within 10 s (flags seen: " + flagNames(booted.flags) + ")");
+    const std::vector<std::string> why = loop::describeBootFailure(ctrl);  // before the exit rewrites it
+    const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
+    writer.stop();
+    std::fprintf(stderr, "mrqp-run: the devices did not boot and enable: %s after %ld cycles (flags seen: %s)\n",
+                 loop::bootFailed(booted) ? "a device's boot failed" : "time limit reached", booted.cycles,
+                 flagNames(booted.flags).c_str());
+    for (const std::string& line : why) std::fprintf(stderr, "mrqp-run:   %s\n", line.c_str());
+    std::fprintf(stderr, "mrqp-run: %s\n", loop::describeSafeExit(rh, exited).c_str());
+    return 1;
   }
+  // An exception between here and the safe exit below (set-up of the loop, a watcher of the run)
+  // still stops the devices: the guard runs the safe exit while the exception passes.
+  bool devices_exited = false;
+  struct ExitOnUnwind {
+    std::function<void()> run;
+    ~ExitOnUnwind() { run(); }
+  } exit_on_unwind{[&]() {
+    if (devices_exited) return;
+    devices_exited = true;
+    const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
+    std::fprintf(stderr, "mrqp-run: stopped by an error after the boot: %s\n",
+                 loop::describeSafeExit(rh, exited).c_str());
+  }};
   const long boot = booted.cycles;
   if (!o.quiet)
     std::printf("mrqp-run: devices ready after %ld cycles (%.3f s)\n", boot, static_cast<double>(boot) * dt);
@@ -353,6 +377,7 @@ int runMain(int argc, char** argv) {
       busy1.push_back(static_cast<std::uint64_t>(rig->bus(b).stats().busy_ns));
   }
   // ---- the safe exit: the drives stopped and left in the NMT state of hardware.safe_exit ----
+  devices_exited = true;
   const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
 
   // ---- summary ----
