@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace mrqp::problem {
@@ -46,30 +47,36 @@ Eigen::Matrix3d rotationOf(const Eigen::Ref<const Eigen::VectorXd>& q) noexcept 
 RigidObject::RigidObject(std::string name, double mass, const Eigen::Vector3d& com,
                          const Eigen::Matrix3d& inertia_about_com, std::string frame_name)
     : Entity(std::move(name), 7, 6, true), frame_name_(std::move(frame_name)) {
-  if (!std::isfinite(mass) || !(mass > 0.0)) {
+  double detail = 0.0;
+  if (const char* why = inertiaProblem(mass, com, inertia_about_com, &detail)) {
     std::ostringstream s;
-    s << "mass must be finite and positive, got " << mass;
-    reject(name_, s.str());
-  }
-  if (!com.allFinite()) reject(name_, "centre of mass is not finite");
-  if (!inertia_about_com.allFinite()) reject(name_, "inertia is not finite");
-  const double scale = inertia_about_com.cwiseAbs().maxCoeff();
-  const double asym = (inertia_about_com - inertia_about_com.transpose()).cwiseAbs().maxCoeff();
-  if (asym > 1e-9 * scale) {
-    std::ostringstream s;
-    s << "inertia is not symmetric (|I - I^T| = " << asym << ")";
-    reject(name_, s.str());
-  }
-  const Eigen::Matrix3d Ic = 0.5 * (inertia_about_com + inertia_about_com.transpose());
-  const double min_eig =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ic, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-  if (!(min_eig > 0.0)) {
-    std::ostringstream s;
-    s << "inertia about the centre of mass is not positive definite (smallest eigenvalue " << min_eig << ")";
+    s << why;
+    if (why[std::char_traits<char>::length(why) - 1] == ' ') s << detail;
     reject(name_, s.str());
   }
   if (frame_name_.empty()) frame_name_ = name_;
+  assignInertia(mass, com, 0.5 * (inertia_about_com + inertia_about_com.transpose()));
 
+  neutral(q_);
+  update();
+}
+
+const char* RigidObject::inertiaProblem(double mass, const Eigen::Vector3d& com, const Eigen::Matrix3d& Ic,
+                                        double* detail) noexcept {
+  *detail = mass;
+  if (!std::isfinite(mass) || !(mass > 0.0)) return "mass must be finite and positive, got ";
+  if (!com.allFinite()) return "centre of mass is not finite";
+  if (!Ic.allFinite()) return "inertia is not finite";
+  const double scale = Ic.cwiseAbs().maxCoeff();
+  *detail = (Ic - Ic.transpose()).cwiseAbs().maxCoeff();
+  if (*detail > 1e-9 * scale) return "inertia is not symmetric, |I - I^T| = ";
+  const Eigen::Matrix3d S = 0.5 * (Ic + Ic.transpose());
+  *detail = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  if (!(*detail > 0.0)) return "inertia about the centre of mass is not positive definite, smallest eigenvalue ";
+  return nullptr;
+}
+
+void RigidObject::assignInertia(double mass, const Eigen::Vector3d& com, const Eigen::Matrix3d& Ic) noexcept {
   mass_ = mass;
   c_ = com;
   Ic_ = Ic;
@@ -79,9 +86,27 @@ RigidObject::RigidObject(std::string name, double mass, const Eigen::Vector3d& c
   I6_.topRightCorner<3, 3>() = mass * C;
   I6_.bottomLeftCorner<3, 3>() = -mass * C;
   I6_.bottomRightCorner<3, 3>() = mass * Eigen::Matrix3d::Identity();
+}
 
-  neutral(q_);
-  update();
+bool RigidObject::setInertia(double mass, const Eigen::Vector3d& com,
+                             const Eigen::Matrix3d& inertia_about_com) noexcept {
+  double detail = 0.0;
+  if (inertiaProblem(mass, com, inertia_about_com, &detail) != nullptr) return false;
+  assignInertia(mass, com, 0.5 * (inertia_about_com + inertia_about_com.transpose()));
+  computeDynamics();
+  return true;
+}
+
+bool RigidObject::setInertialParameters(const InertialParameters& phi) noexcept {
+  const double m = phi(0);
+  if (!std::isfinite(m) || !(m > 0.0)) return false;
+  const Eigen::Vector3d c = phi.segment<3>(1) / m;
+  Eigen::Matrix3d Io;
+  Io << phi(4), phi(5), phi(7),  //
+      phi(5), phi(6), phi(8),    //
+      phi(7), phi(8), phi(9);
+  const Eigen::Matrix3d C = skew(c);
+  return setInertia(m, c, Io + m * C * C);  // I_c = I_O − m [c]×[c]×ᵀ
 }
 
 RigidObject::InertialParameters RigidObject::inertialParameters() const noexcept {

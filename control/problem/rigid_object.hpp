@@ -46,6 +46,16 @@ class RigidObject final : public Entity {
   /// The 6 × 6 spatial inertia at the object origin in object axes (the constant mass matrix).
   const Eigen::Matrix<double, 6, 6>& spatialInertia() const noexcept { return I6_; }
 
+  /// Replaces the inertial parameters (mass, CoM in the object frame, rotational inertia about the
+  /// CoM in object axes) on the cycle: noexcept, allocation-free. The derived quantities (inertia
+  /// about the origin, spatial inertia) are recomputed and so are M, N and the CoM of the current
+  /// state (as update() does). Returns false and changes nothing for the inputs the constructor
+  /// refuses (mass not finite and positive, non-finite CoM, inertia not symmetric positive definite).
+  bool setInertia(double mass, const Eigen::Vector3d& com, const Eigen::Matrix3d& inertia_about_com) noexcept;
+  /// The same from parameters about the object origin (InertialParameters' layout, e.g. an
+  /// estimate): c = h / m, I_c = I_O − m [c]×[c]×ᵀ.
+  bool setInertialParameters(const InertialParameters& phi) noexcept;
+
   int frameCount() const noexcept override { return 1; }
   const char* frameName(int frame) const noexcept override;
   int frameIndex(const std::string& name) const noexcept override;
@@ -60,6 +70,10 @@ class RigidObject final : public Entity {
  private:
   void computeDynamics() noexcept override;
   void integrateConfiguration(double dt) noexcept override;
+  /// The inertia's failure as text, nullptr when valid (for the constructor's message).
+  static const char* inertiaProblem(double mass, const Eigen::Vector3d& com, const Eigen::Matrix3d& Ic,
+                                    double* detail) noexcept;
+  void assignInertia(double mass, const Eigen::Vector3d& com, const Eigen::Matrix3d& Ic) noexcept;
 
   std::string frame_name_;
   Eigen::Vector3d c_;               ///< centre of mass, object frame
