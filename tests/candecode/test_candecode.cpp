@@ -124,7 +124,7 @@ TEST_CASE("SYNC, heartbeat and a foreign EMCY decode; malformed and unknown fram
   CHECK(c.decoded == 3);
   CHECK(c.malformed == 1);
   CHECK(c.unknown == 1);
-  CHECK(field(rows, "state") == MRQP_FW_NMT_STATE_OPERATIONAL);
+  CHECK(field(rows, "state") == static_cast<double>(MRQP_FW_NMT_STATE_OPERATIONAL));
   CHECK(field(rows, "error_code") == 0x2310);
 }
 

@@ -152,6 +152,7 @@ class FakeHandBoard final : public mrqp::drivers::SimListener {
   void setFrozen(bool f) noexcept { frozen_ = f; }
   std::uint8_t mode() const noexcept { return mode_; }
   float position(unsigned j) const noexcept { return joints_state_[j].position; }
+  unsigned joints() const noexcept { return joints_; }
   unsigned commands() const noexcept { return commands_; }
 
   void onReceive(SimNode&, ReceiveResult kind, const RxFrame& rx) noexcept override {
