@@ -134,6 +134,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
         d.node = grp.first_node + static_cast<int>(j);
         d.mode = grp.mode;
         d.rated_torque = grp.rated_torque;
+        d.identity = grp.identity;
         claimNode(bus, d.node, grp.source, field + ".joints[" + std::to_string(j) + "]");
         rob.drives.push_back(d);
       }
@@ -305,6 +306,13 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rb.report = budget.report();
   }
   return out;
+}
+
+void applyDriveIdentity(drivers::ArmDriveConfig& config, const ResolvedDrive& drive) {
+  config.device_type = drive.identity.device_type;
+  config.vendor_id = drive.identity.vendor_id;
+  config.product_code = drive.identity.product_code;
+  config.revision = drive.identity.revision;
 }
 
 void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw, const ResolvedRobot* robot) {

@@ -15,6 +15,7 @@
 
 namespace mrqp::drivers {
 struct ArmConfig;
+struct ArmDriveConfig;
 }
 
 namespace mrqp::loop {
@@ -30,6 +31,7 @@ struct ResolvedDrive {
   int node = 1;  ///< CiA 402: node id; MIT: motor id; FD: board number
   DriveMode mode = DriveMode::Csp;
   double rated_torque = 100.0;
+  DriveIdentity identity;  ///< CiA 402: checked at boot (0 = not checked)
   ActuatorKind kind = ActuatorKind::Cia402;
   int group = -1;    ///< MIT / FD: the group of the hardware section (an fd group is one board)
   double kp = -1.0;  ///< MIT: the impedance's stiffness
@@ -82,6 +84,9 @@ struct ResolvedHardware {
 /// when given; recovery stays the loop's decision (RecoveryPolicy::Manual).
 void applySafetyConfig(drivers::ArmConfig& config, const ResolvedHardware& hw,
                        const ResolvedRobot* robot = nullptr);
+
+/// The identity a CiA 402 drive is checked against at boot, in its arm driver's configuration.
+void applyDriveIdentity(drivers::ArmDriveConfig& config, const ResolvedDrive& drive);
 
 /// Resolves `spec` against the entities of `problem` for a loop period `dt` (s).
 ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiRobotProblem& problem,

@@ -22,12 +22,23 @@ struct BusDecl {
 
 enum class DriveMode : std::uint8_t { Csp = 0, Cst };
 
+/// What the arm master reads and checks at boot before configuring a drive (0 = not checked):
+/// device type 0x1000 (its low 16 bits, the profile number), identity 0x1018:1..3. A drive with
+/// another value is not configured: its boot fails (docs/drivers.md).
+struct DriveIdentity {
+  std::uint32_t device_type = 0;
+  std::uint32_t vendor_id = 0;
+  std::uint32_t product_code = 0;
+  std::uint32_t revision = 0;
+};
+
 /// A group of CiA 402 drives on one bus: node ids first_node, first_node + 1, ... in joint order.
 struct Cia402Group {
   std::string bus;
   DriveMode mode = DriveMode::Csp;
   int first_node = 1;
   double rated_torque = 100.0;  ///< N·m per 1000 ‰ on the wire
+  DriveIdentity identity;       ///< checked on every drive of the group
   std::vector<std::string> joints;
   scene::Source source;
 };

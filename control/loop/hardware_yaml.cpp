@@ -2,6 +2,8 @@
 #include "loop/hardware_yaml.hpp"
 
 #include <climits>
+#include <cstdint>
+#include <optional>
 
 #include "scene/yaml_reader.hpp"
 
@@ -40,6 +42,17 @@ BusDecl readBus(const Reader& r, const YAML::Node& n, const std::string& path) {
   return b;
 }
 
+/// An unsigned 32-bit value (decimal or 0x hex) of a CANopen object; 0 when absent.
+std::uint32_t u32(const Map& m, const char* key) {
+  const YAML::Node* n = m.find(key);
+  if (n == nullptr) return 0;
+  const std::optional<long long> v = scene::toInteger(*n);
+  if (!v || *v < 0 || *v > 0xFFFFFFFFLL) {
+    m.reader().fail(*n, m.at(key), "expected an integer in [0, 0xFFFFFFFF], got " + scene::describe(*n));
+  }
+  return static_cast<std::uint32_t>(*v);
+}
+
 std::vector<std::string> jointList(const Map& m) {
   std::vector<std::string> j = m.reader().names(m.require("joints"), m.at("joints"));
   if (j.empty()) {
@@ -49,7 +62,9 @@ std::vector<std::string> jointList(const Map& m) {
 }
 
 Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& path) {
-  const Map m(r, n, path, {"bus", "mode", "first_node", "rated_torque", "joints"});
+  const Map m(r, n, path,
+              {"bus", "mode", "first_node", "rated_torque", "device_type", "vendor_id", "product_code", "revision",
+               "joints"});
   Cia402Group g;
   g.bus = m.name("bus");
   if (const YAML::Node* mode = m.find("mode")) {
@@ -64,6 +79,10 @@ Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& 
   }
   g.first_node = m.integer("first_node", 1, 127, 1);
   g.rated_torque = m.number("rated_torque", Bound::Positive, 100.0);
+  g.identity.device_type = u32(m, "device_type");
+  g.identity.vendor_id = u32(m, "vendor_id");
+  g.identity.product_code = u32(m, "product_code");
+  g.identity.revision = u32(m, "revision");
   g.joints = jointList(m);
   if (g.first_node + static_cast<int>(g.joints.size()) - 1 > 127) {
     r.fail(m.require("joints"), m.at("joints"),

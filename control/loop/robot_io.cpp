@@ -65,6 +65,7 @@ void addArm(RobotIo& r, const RobotBuses& rb, double dt) {
     dc.mode = d.mode == DriveMode::Csp ? MRQP_FW_MODE_CSP : MRQP_FW_MODE_CST;
     const double lim = rb.e.effortLimit()(d.joint);
     if (lim > 0.0) dc.torque_limit = lim;
+    applyDriveIdentity(dc, d);  // checked at boot (hardware.robots[].cia402[].vendor_id...)
     ac.drives.push_back(dc);
   }
   std::string err;

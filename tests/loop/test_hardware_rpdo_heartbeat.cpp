@@ -102,6 +102,35 @@ TEST_CASE("loop: hardware rpdo_timeout reaches the drives' 0x1400:05 at boot", "
   CHECK(loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get()).done);
 }
 
+TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and its errors", "[loop][hardware]") {
+  const std::string drives =
+      "      cia402:\n"
+      "        - {bus: a, vendor_id: 0x29C, product_code: 1026, joints: [panda_joint1, panda_joint2,\n"
+      "                                                              panda_joint3, panda_joint4, panda_joint5]}\n"
+      "        - {bus: b, first_node: 6, device_type: 0x20192, revision: 0x10000,\n"
+      "           joints: [panda_joint6, panda_joint7, panda_finger_joint1]}\n";
+  const loop::ResolvedHardware r = resolve(std::string(kBuses) + kRobot + drives);
+  REQUIRE(r.robots[0].drives.size() == 8u);
+  drivers::ArmDriveConfig first, last;
+  loop::applyDriveIdentity(first, r.robots[0].drives[4]);
+  loop::applyDriveIdentity(last, r.robots[0].drives[7]);
+  CHECK(first.vendor_id == 0x29Cu);
+  CHECK(first.product_code == 1026u);
+  CHECK(first.device_type == 0u);  // not checked
+  CHECK(first.revision == 0u);
+  CHECK(last.device_type == 0x20192u);
+  CHECK(last.revision == 0x10000u);
+  CHECK(last.vendor_id == 0u);
+  CHECK(errorOf(std::string(kBuses) + kRobot +
+                "      cia402:\n        - {bus: a, vendor_id: 0x100000000, joints: [panda_joint1]}\n") ==
+        "s.yaml:12: hardware.robots[0].cia402[0].vendor_id: expected an integer in [0, 0xFFFFFFFF], got "
+        "\"0x100000000\"");
+  CHECK(errorOf(std::string(kBuses) + kRobot +
+                "      cia402:\n        - {bus: a, revision: -1, joints: [panda_joint1]}\n")
+            .rfind("s.yaml:12: hardware.robots[0].cia402[0].revision: expected an integer in [0, 0xFFFFFFFF]", 0) ==
+        0u);
+}
+
 TEST_CASE("loop: the controller heartbeat is in the bus budget of every bus of CiA 402 drives",
           "[loop][hardware]") {
   const std::string drives = std::string(kRobot) + kDrives;
