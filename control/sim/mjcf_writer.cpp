@@ -426,11 +426,11 @@ void checkPlantNames(const scene::SceneSpec& scene, const PlantSpec& plant) {
   for (std::size_t i = 0; i < plant.grasps.size(); ++i) {
     bool found = false;
     for (const scene::ContactSpec& c : scene.contacts) {
-      found = found || (c.name == plant.grasps[i] && !c.other_entity.empty());
+      found = found || (c.name == plant.grasps[i].contact && !c.other_entity.empty());
     }
     if (!found) {
-      throw std::runtime_error(where(plant.source) + "plant.grasps[" + std::to_string(i) + "]: '" +
-                               plant.grasps[i] + "' is not a contact between two entities of the scene");
+      throw std::runtime_error(where(plant.grasps[i].source) + "plant.grasps[" + std::to_string(i) + "]: '" +
+                               plant.grasps[i].contact + "' is not a contact between two entities of the scene");
     }
   }
 }
@@ -546,7 +546,8 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
          << num(m.multiplier) << " 0 0 0\"/>\n";
     }
   }
-  for (const std::string& g : plant.grasps) {
+  for (const GraspSpec& grasp : plant.grasps) {
+    const std::string& g = grasp.contact;
     for (const scene::ContactSpec& c : scene.contacts) {
       if (c.name != g) {
         continue;
@@ -565,12 +566,27 @@ MjcfModel writeMjcf(const scene::SceneSpec& scene, const PlantSpec& plant,
           weld = known;
         }
       }
-      eq << "<weld name=\"grasp/" << g << "\" body1=\"" << weld.body1 << "\" body2=\"" << weld.body2 << "\"";
-      if (weld.relative_known) {
-        const Eigen::Quaterniond q(weld.relative.rotation());
-        eq << " relpose=\"" << vec(weld.relative.translation()) << " " << quat(q) << "\"";
+      weld.point_only = grasp.hold == GraspSpec::Hold::Point;
+      weld.point = grasp.point;
+      const Eigen::Vector3d point = grasp.point_given ? grasp.point : Eigen::Vector3d::Zero();
+      const std::string solref = " solref=\"" + num(grasp.timeconst) + " " + num(grasp.dampratio) + "\"/>\n";
+      if (weld.point_only) {
+        // MuJoCo's connect: anchor is the point in body1.
+        eq << "<connect name=\"grasp/" << g << "\" body1=\"" << weld.body1 << "\" body2=\"" << weld.body2
+           << "\" anchor=\"" << vec(weld.relative_known ? Eigen::Vector3d(weld.relative * point) : point) << "\""
+           << solref;
+      } else {
+        eq << "<weld name=\"grasp/" << g << "\" body1=\"" << weld.body1 << "\" body2=\"" << weld.body2 << "\"";
+        if (weld.relative_known) {
+          // MuJoCo holds body1 · relpos = body2 · anchor: relpos is the weld's point in body1.
+          const Eigen::Quaterniond q(weld.relative.rotation());
+          eq << " relpose=\"" << vec(weld.relative * point) << " " << quat(q) << "\"";
+        }
+        if (grasp.point_given) {
+          eq << " anchor=\"" << vec(point) << "\"";
+        }
+        eq << solref;
       }
-      eq << " solref=\"" << num(plant.grasp_timeconst) << " " << num(plant.grasp_dampratio) << "\"/>\n";
       out.welds.push_back(weld);
     }
   }

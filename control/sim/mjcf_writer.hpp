@@ -45,6 +45,11 @@ struct MjcfWeld {
   std::string body1, body2;                                    ///< prefixed body names
   Eigen::Isometry3d relative = Eigen::Isometry3d::Identity();  ///< pose of body2 in body1
   bool relative_known = false;  ///< false: MuJoCo takes it from the reference configuration
+  /// A connect (GraspSpec::Hold::Point): `point` of body2 (its frame) held on body1. MuJoCo 2.2's
+  /// connect takes body2's point from the reference configuration: the plant writes `point`
+  /// into the model's eq_data after loading (MujocoPlant).
+  bool point_only = false;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
 };
 
 struct MjcfModel {

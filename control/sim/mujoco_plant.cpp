@@ -70,6 +70,17 @@ MujocoPlant::MujocoPlant(const scene::SceneSpec& scene, const PlantSpec& plant,
     data_ = nullptr;
     model_ = nullptr;
     load(mjcf_.xml);
+    // A connect's point on body2 is MuJoCo's eq_data[3..5], which the compiler takes from the
+    // reference configuration: the grasp's own point instead (its anchor on body1 is that point
+    // in the initial state).
+    for (const MjcfWeld& w : mjcf_.welds) {
+      if (w.point_only) {
+        const int id = mj_name2id(model_, mjOBJ_EQUALITY, ("grasp/" + w.contact).c_str());
+        for (int k = 0; k < 3; ++k) {
+          model_->eq_data[mjNEQDATA * id + 3 + k] = w.point(k);
+        }
+      }
+    }
     placeInitialState(scene, registry);
   }
   if (plant.settle > 0.0) {

@@ -76,6 +76,27 @@ struct DriveSpec {
   double hold_kd = 300.0;    ///< N·m·s/rad
 };
 
+/// A scene contact that the plant holds by a MuJoCo equality between the bodies of its two
+/// frames (docs/mujoco.md, "Grasps"). A plain name in `grasps` is a 6-DOF weld with the section's
+/// `grasp_softness`; the map form sets, per grasp, what is held and how soft it is.
+struct GraspSpec {
+  enum class Hold {
+    Pose,  ///< a weld: the relative pose of the two bodies
+    Point  ///< a connect: one point of each body kept together, the rotation about it free (a
+           ///< pinch that lets a lever turn between the pads)
+  };
+  std::string contact;
+  Hold hold = Hold::Pose;
+  /// The held point in the contact's frame (the body of the contact's `frame`); a weld with
+  /// `point` holds its pose about that point (MuJoCo's `anchor`). Unset: the frame's origin
+  /// (a Point grasp needs it).
+  bool point_given = false;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  double timeconst = 0.02;  ///< solref, s (default: the section's grasp_softness)
+  double dampratio = 1.0;
+  scene::Source source;
+};
+
 struct PlantSpec {
   bool present = false;             ///< the scene has a plant section
   std::string simulator = "ideal";  ///< "ideal" or "mujoco" (default "mujoco" in a section)
@@ -92,9 +113,10 @@ struct PlantSpec {
   ContactParams contact;  ///< every pair without its own entry
   std::vector<PairSpec> pairs;
   std::vector<GeomSpec> geoms;
-  std::vector<std::string> grasps;  ///< scene contacts held as rigid welds
+  std::vector<GraspSpec> grasps;  ///< scene contacts held as welds
   /// Softness of the grasps' welds (MuJoCo's solref of an equality: time constant, damping
-  /// ratio; MuJoCo's default 0.02 s, 1): a hand's pads and fingers are not rigid.
+  /// ratio; MuJoCo's default 0.02 s, 1): a hand's pads and fingers are not rigid. The default of
+  /// every grasp that does not set its own.
   double grasp_timeconst = 0.02;
   double grasp_dampratio = 1.0;
   SensorNoiseSpec noise;

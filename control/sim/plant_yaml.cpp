@@ -84,6 +84,42 @@ GeomSpec readGeom(const Reader& r, const YAML::Node& n, const std::string& path)
   return g;
 }
 
+/// A grasp: a contact's name (a weld with the section's softness) or
+/// {contact, hold: pose | point, point, timeconst, dampratio}.
+GraspSpec readGrasp(const Reader& r, const YAML::Node& n, const std::string& path, const PlantSpec& s) {
+  GraspSpec g;
+  g.source = r.source(n);
+  g.timeconst = s.grasp_timeconst;
+  g.dampratio = s.grasp_dampratio;
+  if (!n.IsMap()) {
+    g.contact = r.name(n, path);
+    return g;
+  }
+  const Map m(r, n, path, {"contact", "hold", "point", "timeconst", "dampratio"});
+  g.contact = m.name("contact");
+  if (m.has("hold")) {
+    const std::string hold = m.name("hold");
+    if (hold == "point") {
+      g.hold = GraspSpec::Hold::Point;
+    } else if (hold != "pose") {
+      r.fail(m.require("hold"), m.at("hold"), "expected pose or point, got \"" + hold + "\"");
+    }
+  }
+  if (m.has("point")) {
+    g.point_given = true;
+    g.point = m.vec3("point", Eigen::Vector3d::Zero());
+  } else if (g.hold == GraspSpec::Hold::Point) {
+    r.fail(n, path, "missing required field 'point' (hold: point holds the bodies at that point)");
+  }
+  g.timeconst = m.number("timeconst", Bound::Positive, g.timeconst);
+  g.dampratio = m.number("dampratio", Bound::Positive, g.dampratio);
+  if (g.timeconst < 2.0 * s.timestep) {
+    r.fail(m.require("timeconst"), m.at("timeconst"),
+           "must be at least two time steps (" + scene::formatNumber(2.0 * s.timestep) + " s)");
+  }
+  return g;
+}
+
 }  // namespace
 
 PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
@@ -181,9 +217,6 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
       s.geoms.push_back(readGeom(r, items[i], scene::item(m.at("geoms"), i)));
     }
   }
-  if (const YAML::Node* g = m.find("grasps")) {
-    s.grasps = r.names(*g, m.at("grasps"));
-  }
   if (const YAML::Node* g = m.find("grasp_softness")) {
     const Map gm(r, *g, m.at("grasp_softness"), {"timeconst", "dampratio"});
     s.grasp_timeconst = gm.number("timeconst", Bound::Positive, s.grasp_timeconst);
@@ -191,6 +224,12 @@ PlantSpec readPlantSection(const Reader& r, const YAML::Node* node) {
     if (s.grasp_timeconst < 2.0 * s.timestep) {
       r.fail(gm.require("timeconst"), gm.at("timeconst"),
              "must be at least two time steps (" + scene::formatNumber(2.0 * s.timestep) + " s)");
+    }
+  }
+  if (const YAML::Node* g = m.find("grasps")) {
+    const std::vector<YAML::Node> items = r.list(*g, m.at("grasps"));
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      s.grasps.push_back(readGrasp(r, items[i], scene::item(m.at("grasps"), i), s));
     }
   }
   if (const YAML::Node* n = m.find("noise")) {
