@@ -21,14 +21,9 @@
 #include "loop/deadline_clock.hpp"
 #include "loop/emulated_rig.hpp"
 #include "loop/hardware_check.hpp"
-#include "loop/hardware_yaml.hpp"
 #include "loop/ideal_plant.hpp"
-#include "loop/scene_override.hpp"
-#include "plant_factory.hpp"
 #include "run_options.hpp"
-#include "scene/builtin_models.hpp"
-#include "scene/scene_builder.hpp"
-#include "scene/yaml_reader.hpp"
+#include "run_scene.hpp"
 
 using namespace mrqp;
 
@@ -115,22 +110,11 @@ int plantMain(int argc, char** argv) {
     return 0;
   }
 
-  // ---- the scene, its hardware and the plant (as mrqp-run builds them) ----
-  std::string text = scene::readTextFile(o.scene);
-  for (const std::string& s : o.sets) text = loop::applySceneOverride(text, o.scene, s);
-  scene::ModelRegistry models;
-  scene::addBuiltinModels(models);
-  const scene::SceneSpec spec = scene::loadSceneString(text, o.scene);
-  scene::Scene sc = scene::buildScene(spec, models);
-  problem::MultiRobotProblem& p = *sc.problem;
-  const loop::HardwareSpec hw = loop::readHardwareString(text, o.scene);
-  if (!hw.present) {
-    throw scene::SceneError(o.scene + ":1: hardware: the scene has no hardware section (docs/loop.md)");
-  }
-  const loop::ResolvedHardware rh = loop::resolveHardware(hw, p, sc.settings.dt);
-  std::string kind = o.plant.empty() ? loop::readPlantSimulatorString(text, o.scene) : o.plant;
-  if (kind.empty()) kind = "ideal";
-  std::unique_ptr<loop::Plant> plant = run::makePlant(kind, spec, text, o.scene, models, p);
+  // ---- the scene, its hardware and the plant (as mrqp-run loads them) ----
+  const std::unique_ptr<run::RunScene> rs = run::loadRunScene(o.scene, o.sets, o.plant);
+  problem::MultiRobotProblem& p = *rs->scene.problem;
+  const loop::ResolvedHardware& rh = rs->hardware;
+  std::unique_ptr<loop::Plant>& plant = rs->plant;
   // No controller solves in this process: the ideal plant follows no accelerations.
   if (auto* ideal = dynamic_cast<loop::IdealPlant*>(plant.get())) ideal->setFollowing(false);
   loop::EmulatedRig rig(rh, p, *plant);

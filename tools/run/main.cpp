@@ -35,18 +35,15 @@
 #include "loop/emulated_rig.hpp"
 #include "loop/fault_injector.hpp"
 #include "loop/hardware_check.hpp"
-#include "loop/hardware_yaml.hpp"
 #include "loop/ideal_plant.hpp"
 #include "loop/log_ring.hpp"
 #include "loop/realtime.hpp"
-#include "loop/scene_override.hpp"
 #include "loop/timeline.hpp"
 #include "motion_track.hpp"
 #include "pen_click_watch.hpp"
-#include "plant_factory.hpp"
+#include "run_scene.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
-#include "scene/builtin_models.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/yaml_reader.hpp"
 #include "summary_fields.hpp"
@@ -151,28 +148,17 @@ int runMain(int argc, char** argv) {
     }
   }
 
-  // ---- the scene, with --set applied ----
-  std::string text = scene::readTextFile(o.scene);
-  for (const std::string& s : o.sets) text = loop::applySceneOverride(text, o.scene, s);
-  scene::ModelRegistry models;
-  scene::addBuiltinModels(models);
-  const scene::SceneSpec spec = scene::loadSceneString(text, o.scene);
-  scene::Scene sc = scene::buildScene(spec, models);
+  // ---- the scene with --set applied, its hardware section and the plant ----
+  const std::unique_ptr<run::RunScene> rs = run::loadRunScene(o.scene, o.sets, o.plant);
+  const std::string& text = rs->text;
+  const scene::ModelRegistry& models = rs->models;
+  const scene::SceneSpec& spec = rs->spec;
+  scene::Scene& sc = rs->scene;
   problem::MultiRobotProblem& p = *sc.problem;
   const double dt = sc.settings.dt;
   const auto period = static_cast<drivers::TimeNs>(std::llround(dt * 1e9));
-
-  const loop::HardwareSpec hw = loop::readHardwareString(text, o.scene);
-  if (!hw.present) {
-    throw scene::SceneError(o.scene + ":1: hardware: the scene has no hardware section (docs/loop.md)");
-  }
-  const loop::ResolvedHardware rh = loop::resolveHardware(hw, p, dt);
-
-  // ---- the plant ----
-  std::string plant_kind = o.plant;
-  if (plant_kind.empty()) plant_kind = loop::readPlantSimulatorString(text, o.scene);
-  if (plant_kind.empty()) plant_kind = "ideal";
-  std::unique_ptr<loop::Plant> plant = run::makePlant(plant_kind, spec, text, o.scene, models, p);
+  const loop::ResolvedHardware& rh = rs->hardware;
+  std::unique_ptr<loop::Plant>& plant = rs->plant;
   auto* ideal = dynamic_cast<loop::IdealPlant*>(plant.get());
 
   // ---- the buses ----
