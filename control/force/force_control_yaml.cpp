@@ -2,6 +2,8 @@
 #include "force/force_control_yaml.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "problem/tasks/contact_force_task.hpp"
 #include "problem/tasks/frame_task.hpp"
@@ -211,11 +213,77 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
   return e;
 }
 
+/// The admittance's normal in world axes at the scene's start.
+Eigen::Vector3d worldNormal(const problem::MultiRobotProblem& p, const EndEffectorSpec& e) {
+  if (e.normal_in_world) return e.normal;
+  const auto& t = dynamic_cast<const problem::FrameTask&>(p.task(e.task));
+  return p.entity(t.entity()).framePose(t.frame()).R * e.normal;
+}
+
+/// A contact that holds the end-effector along its admittance's normal, found by checkMotion.
+struct HeldGrasp {
+  int contact = -1;
+  std::string contact_name;
+  int other = -1;  ///< the entity on the contact's other side
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< the admittance's normal, world
+};
+
+std::string contactName(const scene::Scene& sc, int id) {
+  for (const auto& [name, cid] : sc.contacts) {
+    if (cid == id) return name;
+  }
+  return "#" + std::to_string(id);
+}
+
+/// An admittance moves its end-effector along n (every mode but off). Each active contact of the
+/// end-effector's task frame (and its `contact`) must let it: free along its normal, that normal
+/// (world, at the start) within 10° of the admittance's; or, holding the normal, a grasp of
+/// another entity, which the end-effector then carries along n (what resists that entity's motion
+/// — a mechanism's spring, an object's weight — makes the force). A contact with the environment
+/// that holds the normal cannot let the end-effector move at all: refused. Returns the grasps
+/// that hold the normal (the caller refuses two of them squeezing one entity).
+std::vector<HeldGrasp> checkMotion(const Reader& r, const YAML::Node& at, const std::string& field,
+                                   const scene::Scene& sc, const EndEffectorSpec& e) {
+  const problem::MultiRobotProblem& p = *sc.problem;
+  const auto& t = dynamic_cast<const problem::FrameTask&>(p.task(e.task));
+  const Eigen::Vector3d n = worldNormal(p, e);
+  std::vector<HeldGrasp> held;
+  for (int id = 0; id < p.contactCapacity(); ++id) {
+    if (!p.contactActive(id)) continue;
+    const problem::ContactDesc& c = p.contact(id);
+    const bool surface_side = c.entity == t.entity() && c.frame == t.frame();
+    const bool other_side = c.other_entity == t.entity() && c.other_frame == t.frame();
+    if (!surface_side && !other_side && id != e.contact) continue;
+    const std::string name = contactName(sc, id);
+    const Eigen::Vector3d cn = p.entity(c.entity).framePose(c.frame).R * c.normal;
+    const double cosine = std::fabs(cn.dot(n));
+    if ((c.free & problem::kFreeNormal) != 0) {
+      if (cosine < std::cos(10.0 * M_PI / 180.0)) {
+        r.fail(at, field,
+               "contact '" + name + "' is free along its normal, which is " +
+                   scene::formatNumber(std::round(std::acos(std::min(1.0, cosine)) * 180.0 / M_PI)) +
+                   "° from end-effector '" + e.name + "''s normal: the admittance's motion is held");
+      }
+      continue;
+    }
+    const int other = c.entity == t.entity() ? c.other_entity : c.entity;
+    if (other < 0) {
+      r.fail(at, field,
+             "mode '" + std::string(forceModeName(e.mode)) + "' moves end-effector '" + e.name +
+                 "' along its normal, which contact '" + name +
+                 "' holds: give the contact free: [normal] (docs/force-control.md)");
+    }
+    held.push_back({id, name, other, n});
+  }
+  return held;
+}
+
 }  // namespace
 
 ForceControlSpec readForceControl(const std::string& text, const std::string& file, const scene::Scene& sc,
                                   const loop::ResolvedHardware& hw, double dt) {
   ForceControlSpec out;
+  std::vector<YAML::Node> nodes;  // each end-effector's item
   const YAML::Node doc = scene::parseYamlDocument(text, file);
   if (!doc.IsMap()) return out;
   const Reader r(file);
@@ -235,7 +303,9 @@ ForceControlSpec readForceControl(const std::string& text, const std::string& fi
                      std::to_string(o.source.line) + ")");
         }
       }
+      // Motion along n (any mode but off, initially or from the timeline): checked below.
       out.end_effectors.push_back(std::move(e));
+      nodes.push_back(items[i]);
     }
   }
 
@@ -275,6 +345,35 @@ ForceControlSpec readForceControl(const std::string& text, const std::string& fi
   }
   std::stable_sort(out.events.begin(), out.events.end(),
                    [](const ForceEvent& a, const ForceEvent& b) { return a.at < b.at; });
+
+  // The admittances that move (a mode other than off at the start or from the timeline) against
+  // the contacts of their end-effectors; two grasps holding one entity along opposite normals
+  // squeeze it by position only: refused (free their normals).
+  std::vector<std::pair<std::size_t, HeldGrasp>> grasps;
+  for (std::size_t i = 0; i < out.end_effectors.size(); ++i) {
+    const EndEffectorSpec& e = out.end_effectors[i];
+    bool moves = e.mode != ForceMode::Off;
+    for (const ForceEvent& ev : out.events) {
+      moves = moves || (ev.end_effector == static_cast<int>(i) && ev.set_mode && ev.mode != ForceMode::Off);
+    }
+    if (!moves) continue;
+    const std::string path = scene::item("force_control", i);
+    const YAML::Node& node = nodes[i];
+    const YAML::Node at = node["mode"] ? node["mode"] : node;
+    for (HeldGrasp& g : checkMotion(r, at, path + ".mode", sc, e)) {
+      for (const auto& [j, o] : grasps) {
+        if (o.other == g.other && o.normal.dot(g.normal) < -0.9) {
+          r.fail(at, path + ".mode",
+                 "end-effectors '" + out.end_effectors[j].name + "' and '" + e.name + "' squeeze entity '" +
+                     sc.problem->entity(g.other).name() + "' from opposite sides through contacts '" +
+                     o.contact_name + "' and '" + g.contact_name +
+                     "', which hold their normals: the admittances cannot press; give the contacts "
+                     "free: [normal] (docs/force-control.md)");
+        }
+      }
+      grasps.emplace_back(i, std::move(g));
+    }
+  }
   return out;
 }
 

@@ -168,6 +168,7 @@ Scene buildScene(const SceneSpec& spec, const ModelRegistry& models) {
     c.normal = cs.normal;
     c.friction = cs.friction;
     c.generators = cs.generators;
+    c.free = cs.free;
     const int id = p.addContact(c);
     if (id < 0) fail(cs.source, field, p.lastError());
     scene.contacts[cs.name] = id;

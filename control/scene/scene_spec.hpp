@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <any>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -62,6 +63,8 @@ struct ContactSpec {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // direction of the force ON `entity`
   double friction = 0.7;
   int generators = 4;
+  /// Directions of the contact frame left free (problem::ContactDirection bits; `free:` words).
+  std::uint8_t free = 0;
   bool active = true;
   Source source;
 };

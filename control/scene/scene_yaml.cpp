@@ -2,6 +2,7 @@
 // dotted path of the offending key.
 #include "scene/scene_yaml.hpp"
 
+#include "problem/contact.hpp"
 #include "problem/problem_settings.hpp"
 #include "scene/constraint_kind.hpp"
 #include "scene/task_kind.hpp"
@@ -192,9 +193,47 @@ std::vector<Eigen::Vector3d> readPoints(const Reader& r, const YAML::Node& n, co
   return points;
 }
 
+// `free:` words: directions of the contact frame (t1, t2, n) the no-slip constraint leaves to
+// the tasks (problem/contact.hpp).
+struct FreeWord {
+  const char* word;
+  std::uint8_t bits;
+};
+constexpr FreeWord kFreeWords[] = {{"normal", problem::kFreeNormal},
+                                   {"tangent", problem::kFreeTangent},
+                                   {"twist", problem::kFreeTwist},
+                                   {"tilt", problem::kFreeTilt}};
+
+std::uint8_t readFree(const Reader& r, const YAML::Node& n, const std::string& path, std::size_t npoints) {
+  std::vector<std::string> words;
+  for (const FreeWord& w : kFreeWords) words.emplace_back(w.word);
+  const std::vector<YAML::Node> items = r.list(n, path);
+  std::uint8_t free = 0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string word = r.name(items[i], item(path, i));
+    const FreeWord* found = nullptr;
+    for (const FreeWord& w : kFreeWords) {
+      if (word == w.word) found = &w;
+    }
+    if (found == nullptr) {
+      r.fail(items[i], item(path, i), "unknown direction '" + word + "' (expected " + nameList(words) + ")");
+    }
+    if ((free & found->bits) != 0) {
+      r.fail(items[i], item(path, i), "direction '" + word + "' is given twice");
+    }
+    if (npoints == 1 && (found->bits & problem::kFreeRotations) != 0) {
+      r.fail(items[i], item(path, i),
+             "a single-point contact holds no rotation: '" + word + "' does not apply (normal, tangent)");
+    }
+    free = static_cast<std::uint8_t>(free | found->bits);
+  }
+  return free;
+}
+
 ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"name", "entity", "frame", "other", "points", "normal", "friction", "generators", "active"});
+              {"name", "entity", "frame", "other", "points", "normal", "friction", "generators", "free",
+               "active"});
   ContactSpec c;
   c.source = m.source();
   c.name = m.name("name");
@@ -211,6 +250,9 @@ ContactSpec readContact(const Reader& r, const YAML::Node& n, const std::string&
   }
   c.friction = m.number("friction", Bound::Positive, c.friction);
   c.generators = m.integer("generators", 3, 16, c.generators);
+  if (const YAML::Node* f = m.find("free")) {
+    c.free = readFree(r, *f, m.at("free"), c.points.size());
+  }
   c.active = m.boolean("active", c.active);
   return c;
 }

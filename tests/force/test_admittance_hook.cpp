@@ -173,7 +173,7 @@ TEST_CASE("force: each mode's target and force task", "[force][loop]") {
       withSection(
           "  - {name: tool, task: press, sensor: panda_link8, normal: [0, 0, -1], normal_frame: world, "
           "mode: qp, force: 6, force_task: press_force}\n"),
-      "active: false", "active: true");
+      "active: false", "active: true\n    free: [normal]");
   ForceSetup s(text, "p.yaml");
   mrqp::problem::MultiRobotProblem& p = *s.sc.problem;
   const int contact = s.sc.contact("hand_table");
@@ -334,7 +334,7 @@ TEST_CASE("force: disabled force control leaves the task's references alone", "[
                    withSection("  - {name: tool, task: press, sensor: panda_link8, normal: [0, 0, -1], "
                                "normal_frame: world, mode: qp, force: 6, force_task: press_force}\n",
                                "  - {at: 0.1, force_control: tool, mode: direct}\n"),
-                   "active: false", "active: true"),
+                   "active: false", "active: true\n    free: [normal]"),
                "p.yaml", /*disabled=*/true);
   const int force_task = s.sc.task("press_force");
   const auto& task = dynamic_cast<const mrqp::problem::FrameTask&>(s.sc.problem->task(s.sc.task("press")));

@@ -6,10 +6,11 @@
 
 #include "counting_allocator.hpp"
 #include "force_setup.hpp"
+#include "loop_cycle_allocations.hpp"
 
 TEST_CASE("force: 10,000 loop cycles with the admittance allocate nothing", "[force][realtime]") {
   std::string text = forcetest::dataText("panda_press.yaml");
-  text = forcetest::replaced(text, "active: false", "active: true");
+  text = forcetest::replaced(text, "active: false", "active: true\n    free: [normal]");
   text = forcetest::replaced(text, "    mode: direct\n", "    mode: qp\n    force_task: press_force\n");
   text +=
       "timeline:\n"
@@ -20,14 +21,7 @@ TEST_CASE("force: 10,000 loop cycles with the admittance allocate nothing", "[fo
       "  - {at: 9.0, force_control: tool, mode: qp, force: 5}\n";
   forcetest::ForceSetup s(text, "p.yaml");
   REQUIRE(s.boot());
-  for (int k = 0; k < 10; ++k) s.cycle();  // warm-up: first solves
-  long in_cycle = 0;
-  for (int k = 0; k < 10000; ++k) {
-    in_cycle += mrqp::testing::allocationsIn([&] { s.ctrl->cycle(s.now); });
-    s.plant->inner().setFollowing(!s.ctrl->safeStopped());
-    s.rig->advanceTo(s.now + s.period);
-    s.now += s.period;
-  }
+  const long in_cycle = mrqp::testing::loopCycleAllocations(s, 10000);  // after 10 warm-up cycles
   CHECK_FALSE(s.ctrl->safeStopped());
   CHECK(s.hook->eventsPlayed() == 5);
   CHECK(s.hook->state(0).mode == mrqp::force::ForceMode::Qp);
