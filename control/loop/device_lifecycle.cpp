@@ -26,14 +26,15 @@ std::string deviceName(const RobotIo& r, const drivers::Device* d, std::size_t i
 }  // namespace
 
 LifecycleResult bootDevices(Controller& controller, drivers::TimeNs& now, drivers::TimeNs period,
-                            EmulatedRig* rig, double timeout_s, const NextCycleTime& next) {
+                            EmulatedRig* rig, double timeout_s, const NextCycleTime& next,
+                            const std::function<bool()>& stop) {
   controller.startDevices(now);
   LifecycleResult res = runDeviceCycles(
       now, period, timeout_s, next, [&](drivers::TimeNs t) { return controller.bootCycle(t); },
       [&](drivers::TimeNs t) {
         if (rig != nullptr) rig->advanceTo(t + period);
       },
-      [&] { return (controller.bootFlags() & fault::kBootFailed) != 0u; });
+      [&] { return (controller.bootFlags() & fault::kBootFailed) != 0u || (stop && stop()); });
   res.flags = controller.bootFlags();
   return res;
 }

@@ -20,6 +20,7 @@
 // (called outside the cycle).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,10 +36,12 @@ inline bool bootFailed(const LifecycleResult& boot) noexcept {
   return !boot.done && (boot.flags & drivers::fault::kBootFailed) != 0u;
 }
 
-/// Boots and enables every device of `controller`; `now` is advanced cycle by cycle.
+/// Boots and enables every device of `controller`; `now` is advanced cycle by cycle. Ends early
+/// when a device's boot has failed or `stop` says so (a signal).
 LifecycleResult bootDevices(Controller& controller, drivers::TimeNs& now, drivers::TimeNs period,
                             EmulatedRig* rig = nullptr, double timeout_s = 10.0,
-                            const NextCycleTime& next = NextCycleTime());
+                            const NextCycleTime& next = NextCycleTime(),
+                            const std::function<bool()>& stop = std::function<bool()>());
 
 /// The safe exit of every device of `controller` (see the top of this file).
 LifecycleResult exitDevices(Controller& controller, drivers::TimeNs& now, drivers::TimeNs period,

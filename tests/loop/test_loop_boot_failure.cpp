@@ -121,3 +121,21 @@ TEST_CASE("loop: boot failure: drives enabled before the boot gave up are stoppe
     if (j != "right.panda_joint2") CHECK(fw.lastControlword() == 0x0000u);  // disable voltage, last
   }
 }
+
+TEST_CASE("loop: boot failure: a stop request (a signal) ends the boot, the safe exit follows",
+          "[loop][safety][boot]") {
+  LoopSetup s(twoArms({}), "two_arms.yaml");
+  int asked = 0;
+  const loop::LifecycleResult boot = loop::bootDevices(*s.ctrl, s.now, s.period, s.rig.get(), 10.0, {},
+                                                       [&asked] { return ++asked >= 5; });
+  CHECK_FALSE(boot.done);
+  CHECK_FALSE(loop::bootFailed(boot));
+  CHECK(boot.cycles == 5);
+  CHECK(loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get()).done);
+  s.rig->advanceTo(s.now + 5 * s.period);
+  for (const std::string& j : driveNames(s)) {
+    INFO(j);
+    CHECK(s.rig->drive(j)->firmware().nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);  // the default safe_exit
+    CHECK(s.rig->drive(j)->firmware().state() != MRQP_FW_CIA402_OPERATION_ENABLED);
+  }
+}

@@ -271,13 +271,21 @@ int runMain(int argc, char** argv) {
     const drivers::TimeNs deadline = paced ? clock.wait() : 0;
     return sim ? now + period : deadline;
   };
-  // A signal from here on ends the loop (at once, if it comes during the boot) with the safe exit.
+  // A signal from here on ends the boot or the loop (after the cycle under way) with the safe exit.
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   // From here on every way out (a failed boot, an exception before or during the loop) runs the
   // same safe exit on what was started (docs/loop.md, "Safety").
   const double boot_timeout_s = 10.0;
-  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), boot_timeout_s, next);
+  const loop::LifecycleResult booted = loop::bootDevices(ctrl, now, period, rig.get(), boot_timeout_s, next,
+                                                         [] { return g_interrupted != 0; });
+  if (!booted.done && g_interrupted != 0) {  // a signal during the boot: nothing ran, nothing failed
+    const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
+    writer.stop();
+    std::printf("mrqp-run: interrupted by a signal during the boot after %ld cycles: %s\n", booted.cycles,
+                loop::describeSafeExit(rh, exited).c_str());
+    return 1;
+  }
   if (!booted.done) {
     const std::vector<std::string> why = loop::describeBootFailure(ctrl);  // before the exit rewrites it
     const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
