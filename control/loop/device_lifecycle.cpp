@@ -1,8 +1,8 @@
 // The devices' boot and safe exit (see device_lifecycle.hpp).
 #include "loop/device_lifecycle.hpp"
 
-#include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/firmware_if/cia402.h>
+#include <mrqp/drivers/arm_driver.hpp>
 
 namespace mrqp::loop {
 
@@ -85,8 +85,8 @@ std::vector<std::string> describeBootFailure(const Controller& controller) {
       if (arm->phase() != drivers::ArmPhase::Running || boot_failed) {
         // Not started, or stopped waiting by another device's failed boot: one line.
         if (!any) {
-          lines.push_back(r.name + ": its " + std::to_string(arm->driveCount()) + " CiA 402 drives in phase " +
-                          drivers::armPhaseStr(arm->phase()) + ", not enabled");
+          lines.push_back(r.name + ": its " + std::to_string(arm->driveCount()) +
+                          " CiA 402 drives in phase " + drivers::armPhaseStr(arm->phase()) + ", not enabled");
         }
         continue;
       }

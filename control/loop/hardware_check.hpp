@@ -16,7 +16,7 @@
 namespace mrqp::drivers {
 struct ArmConfig;
 struct ArmDriveConfig;
-}
+}  // namespace mrqp::drivers
 
 namespace mrqp::loop {
 

@@ -63,8 +63,8 @@ std::vector<std::string> jointList(const Map& m) {
 
 Cia402Group readCia402(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"bus", "mode", "first_node", "rated_torque", "device_type", "vendor_id", "product_code", "revision",
-               "joints"});
+              {"bus", "mode", "first_node", "rated_torque", "device_type", "vendor_id", "product_code",
+               "revision", "joints"});
   Cia402Group g;
   g.bus = m.name("bus");
   if (const YAML::Node* mode = m.find("mode")) {
@@ -136,8 +136,8 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"entity", "divisor", "safe_stop", "hold_damping", "state", "rpdo_timeout", "cia402", "mit", "fd",
-               "ft_sensors", "imus"});
+              {"entity", "divisor", "safe_stop", "hold_damping", "state", "rpdo_timeout", "cia402", "mit",
+               "fd", "ft_sensors", "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);

@@ -29,7 +29,7 @@ const char* kScene =
     "  - {name: panda, model: panda, q: {panda_joint4: -2.0, panda_joint6: 2.0}}\n";                     // 3
 
 const char* kBuses = "hardware:\n  buses:\n    - {name: a}\n    - {name: b}\n  robots:\n";  // lines 4-8
-const char* kRobot = "    - entity: panda\n      divisor: 4\n";                              // lines 9-10
+const char* kRobot = "    - entity: panda\n      divisor: 4\n";                             // lines 9-10
 const char* kDrives =
     "      cia402:\n"
     "        - {bus: a, joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4, panda_joint5]}\n"
@@ -78,8 +78,8 @@ TEST_CASE("loop: hardware rpdo_timeout errors name file, line and field", "[loop
   CHECK(errorOf(head + "      rpdo_timeout: 0.004\n" + kDrives) ==
         "s.yaml:11: hardware.robots[0].rpdo_timeout: must exceed the robot's cycle of 0.004 s (one RPDO per "
         "cycle), got 0.004");
-  CHECK(errorOf(head + "      rpdo_timeout: -1\n" + kDrives).rfind("s.yaml:11: hardware.robots[0].rpdo_timeout: ",
-                                                                   0) == 0u);
+  CHECK(errorOf(head + "      rpdo_timeout: -1\n" + kDrives)
+            .rfind("s.yaml:11: hardware.robots[0].rpdo_timeout: ", 0) == 0u);
   CHECK(errorOf(head + "      rpdo_timeout: fast\n" + kDrives)
             .rfind("s.yaml:11: hardware.robots[0].rpdo_timeout: ", 0) == 0u);
 }
@@ -102,11 +102,13 @@ TEST_CASE("loop: hardware rpdo_timeout reaches the drives' 0x1400:05 at boot", "
   CHECK(loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get()).done);
 }
 
-TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and its errors", "[loop][hardware]") {
+TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and its errors",
+          "[loop][hardware]") {
   const std::string drives =
       "      cia402:\n"
       "        - {bus: a, vendor_id: 0x29C, product_code: 1026, joints: [panda_joint1, panda_joint2,\n"
-      "                                                              panda_joint3, panda_joint4, panda_joint5]}\n"
+      "                                                              panda_joint3, panda_joint4, "
+      "panda_joint5]}\n"
       "        - {bus: b, first_node: 6, device_type: 0x20192, revision: 0x10000,\n"
       "           joints: [panda_joint6, panda_joint7, panda_finger_joint1]}\n";
   const loop::ResolvedHardware r = resolve(std::string(kBuses) + kRobot + drives);
@@ -127,16 +129,17 @@ TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and it
         "\"0x100000000\"");
   CHECK(errorOf(std::string(kBuses) + kRobot +
                 "      cia402:\n        - {bus: a, revision: -1, joints: [panda_joint1]}\n")
-            .rfind("s.yaml:12: hardware.robots[0].cia402[0].revision: expected an integer in [0, 0xFFFFFFFF]", 0) ==
-        0u);
+            .rfind("s.yaml:12: hardware.robots[0].cia402[0].revision: expected an integer in [0, 0xFFFFFFFF]",
+                   0) == 0u);
 }
 
 TEST_CASE("loop: the controller heartbeat is in the bus budget of every bus of CiA 402 drives",
           "[loop][hardware]") {
   const std::string drives = std::string(kRobot) + kDrives;
   const loop::ResolvedHardware plain = resolve(std::string(kBuses) + drives);
-  const loop::ResolvedHardware hb = resolve(
-      std::string(kBuses) + drives + "  controller_heartbeat: {node: 100, period: 0.001, drive_timeout: 0.01}\n");
+  const loop::ResolvedHardware hb =
+      resolve(std::string(kBuses) + drives +
+              "  controller_heartbeat: {node: 100, period: 0.001, drive_timeout: 0.01}\n");
   REQUIRE(plain.buses.size() == 2u);
   REQUIRE(hb.buses.size() == 2u);
   // Worst case of a 1-byte classic frame: 55 + 10 bits at 1 Mbit/s = 65 µs, once per 1 ms period:

@@ -126,8 +126,8 @@ TEST_CASE("loop: boot failure: a stop request (a signal) ends the boot, the safe
           "[loop][safety][boot]") {
   LoopSetup s(twoArms({}), "two_arms.yaml");
   int asked = 0;
-  const loop::LifecycleResult boot = loop::bootDevices(*s.ctrl, s.now, s.period, s.rig.get(), 10.0, {},
-                                                       [&asked] { return ++asked >= 5; });
+  const loop::LifecycleResult boot =
+      loop::bootDevices(*s.ctrl, s.now, s.period, s.rig.get(), 10.0, {}, [&asked] { return ++asked >= 5; });
   CHECK_FALSE(boot.done);
   CHECK_FALSE(loop::bootFailed(boot));
   CHECK(boot.cycles == 5);

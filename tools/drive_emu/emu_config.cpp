@@ -106,10 +106,27 @@ VendorProfile readProfile(const Reader& r, const YAML::Node& n, const std::strin
     r.fail(n, path, "expected lenient, strict or a map of switches, got " + scene::describe(n));
   }
   const Map m(r, n, path,
-              {"base", "tpdo_count", "abort_absent", "abort_read_only", "range_checks", "min_cycle_us",
-               "min_heartbeat_ms", "pdo_rules", "rtr_check", "sync_timeout_factor", "comm_error_behaviour",
-               "comm_error_fault", "statusword_bits", "heartbeat_consumer", "rpdo_timeout_ms",
-               "abort_connection_option", "device_type", "vendor_id", "product_code", "revision", "serial"});
+              {"base",
+               "tpdo_count",
+               "abort_absent",
+               "abort_read_only",
+               "range_checks",
+               "min_cycle_us",
+               "min_heartbeat_ms",
+               "pdo_rules",
+               "rtr_check",
+               "sync_timeout_factor",
+               "comm_error_behaviour",
+               "comm_error_fault",
+               "statusword_bits",
+               "heartbeat_consumer",
+               "rpdo_timeout_ms",
+               "abort_connection_option",
+               "device_type",
+               "vendor_id",
+               "product_code",
+               "revision",
+               "serial"});
   if (const YAML::Node* b = m.find("base"); b != nullptr && !b->IsScalar()) {
     r.fail(*b, m.at("base"), "expected lenient or strict, got " + scene::describe(*b));
   }
@@ -302,9 +319,10 @@ bool validateConfig(const EmuConfig& c, const std::string& origin, std::string* 
       c.profile.abort_connection_option > 3u ||
       !(c.profile.sync_timeout_factor == 0.0 ||
         (c.profile.sync_timeout_factor >= 1.0 && c.profile.sync_timeout_factor <= 100.0))) {
-    return fail("profile",
-                "tpdo_count 1..4, comm_error_behaviour 0..2, abort_connection_option 0..3, sync_timeout_factor 0 "
-                "or [1, 100]");
+    return fail(
+        "profile",
+        "tpdo_count 1..4, comm_error_behaviour 0..2, abort_connection_option 0..3, sync_timeout_factor 0 "
+        "or [1, 100]");
   }
   if (!(c.drop_fraction >= 0.0 && c.drop_fraction <= 1.0)) {
     return fail("faults.drop_fraction", "must be 0..1");

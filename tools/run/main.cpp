@@ -11,9 +11,9 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <functional>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -41,9 +41,9 @@
 #include "loop/timeline.hpp"
 #include "motion_track.hpp"
 #include "pen_click_watch.hpp"
-#include "run_scene.hpp"
 #include "run_options.hpp"
 #include "run_report.hpp"
+#include "run_scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/yaml_reader.hpp"
 #include "summary_fields.hpp"
@@ -290,7 +290,8 @@ int runMain(int argc, char** argv) {
     const std::vector<std::string> why = loop::describeBootFailure(ctrl);  // before the exit rewrites it
     const loop::LifecycleResult exited = loop::exitDevices(ctrl, now, period, rig.get(), 2.0, next);
     writer.stop();
-    std::fprintf(stderr, "mrqp-run: the devices did not boot and enable: %s after %ld cycles (flags seen: %s)\n",
+    std::fprintf(stderr,
+                 "mrqp-run: the devices did not boot and enable: %s after %ld cycles (flags seen: %s)\n",
                  loop::bootFailed(booted) ? "a device's boot failed" : "time limit reached", booted.cycles,
                  flagNames(booted.flags).c_str());
     for (const std::string& line : why) std::fprintf(stderr, "mrqp-run:   %s\n", line.c_str());
