@@ -26,6 +26,10 @@ CollisionConstraint::CollisionConstraint(std::vector<CollisionBody> bodies, std:
       was_active_(pairs_.size(), 0),
       now_active_(pairs_.size(), 0),
       row_pair_(static_cast<std::size_t>(std::max(0, rows)), -1),
+      row_witness_(static_cast<std::size_t>(std::max(0, rows))),
+      row_e_(static_cast<std::size_t>(std::max(0, rows)), 0.0),
+      row_ddot_(static_cast<std::size_t>(std::max(0, rows)), 0.0),
+      row_rate_(static_cast<std::size_t>(std::max(0, rows)), 0.0),
       Ja_(Eigen::MatrixXd::Zero(6, std::max(1, max_nv))),
       Jb_(Eigen::MatrixXd::Zero(6, std::max(1, max_nv))) {}
 
@@ -74,72 +78,106 @@ void CollisionConstraint::update(const MultiRobotProblem& p, ConstraintRows& out
     min_distance_ = std::min(min_distance_, distance_[uk]);
     if (distance_[uk] < c.interaction) candidates_[static_cast<std::size_t>(ncand++)] = k;
   }
-  // The `rows_` most urgent: smallest (d − δs)/(δi − δs).
+  // The most urgent first: smallest (d − δs)/(δi − δs). Every pair that fits gets its nearest
+  // witness's row; the rows left go to the other witnesses of the pairs, in the same order.
   auto urgency = [this](int k) {
     const CollisionPair& c = pairs_[static_cast<std::size_t>(k)];
     return (distance_[static_cast<std::size_t>(k)] - c.security) / (c.interaction - c.security);
   };
+  std::sort(candidates_.begin(), candidates_.begin() + ncand, [&](int x, int y) { return urgency(x) < urgency(y); });
   const int n = std::min(ncand, rows_);
-  if (ncand > rows_) {
-    std::nth_element(candidates_.begin(), candidates_.begin() + n, candidates_.begin() + ncand,
-                     [&](int x, int y) { return urgency(x) < urgency(y); });
-  }
-  active_ = n;
   dropped_ = ncand - n;
-  const double dt = p.settings().dt;
+  dropped_witnesses_ = 0;
   for (int r = 0; r < n; ++r) {
     const int k = candidates_[static_cast<std::size_t>(r)];
+    collision::Witness& w = row_witness_[static_cast<std::size_t>(r)];
+    w.a = collision::ShapePart{};
+    w.b = collision::ShapePart{};
+    w.result = result_[static_cast<std::size_t>(k)];
+    writeRow(p, r, k, out);
+  }
+  int used = n;
+  for (int i = 0; i < n; ++i) {
+    const int k = candidates_[static_cast<std::size_t>(i)];
     const CollisionPair& c = pairs_[static_cast<std::size_t>(k)];
-    const collision::DistanceResult& res = result_[static_cast<std::size_t>(k)];
-    const CollisionBody& ba = body(c.a);
-    const CollisionBody& bb = body(c.b);
-    const Entity& ea = p.entity(ba.entity);
-    const Entity& eb = p.entity(bb.entity);
-    const Pose fa = ea.framePose(ba.frame), fb = eb.framePose(bb.frame);
-    const Eigen::Vector3d la = fa.R.transpose() * (res.a - fa.p);  // witnesses in frame coordinates
-    const Eigen::Vector3d lb = fb.R.transpose() * (res.b - fb.p);
-    auto Ja = Ja_.leftCols(ea.nv());
-    auto Jb = Jb_.leftCols(eb.nv());
-    ea.frameJacobian(ba.frame, la, Ja);
-    eb.frameJacobian(bb.frame, lb, Jb);
-    const Eigen::Vector3d& nrm = res.normal;
-    const int oa = p.velocityOffset(ba.entity), ob = p.velocityOffset(bb.entity);
-    out.C.block(r, oa, 1, ea.nv()).noalias() -= dt * nrm.transpose() * Ja.bottomRows<3>();
-    out.C.block(r, ob, 1, eb.nv()).noalias() += dt * nrm.transpose() * Jb.bottomRows<3>();
-    // The witnesses' twists (ω; velocity of the witness point), then ḋ and the drift of d̈ at q̈ = 0:
-    // the witnesses' J̇ v and the curvature part (collision/distance_rate.hpp).
-    Vector6d ta, tb;
-    ta.noalias() = Ja * ea.v();
-    tb.noalias() = Jb * eb.v();
-    const double ddot = nrm.dot(tb.tail<3>() - ta.tail<3>());
-    collision::RigidMotion ma, mb;
-    ma.omega = ta.head<3>();
-    ma.v = ta.tail<3>();
-    ma.at = res.a;
-    mb.omega = tb.head<3>();
-    mb.v = tb.tail<3>();
-    mb.at = res.b;
-    const double drift = nrm.dot(eb.frameBiasAcceleration(bb.frame, lb).tail<3>() -
-                                 ea.frameBiasAcceleration(ba.frame, la).tail<3>()) +
-                         collision::distanceCurvature(res, ba.shape.radius, bb.shape.radius, ma, mb);
-    const double d = distance_[static_cast<std::size_t>(k)];
-    row_pair_[static_cast<std::size_t>(r)] = k;
-    // A pair entering δi faster than ξ allows gets the damping that its entry speed needs (as
-    // Tasks' CollisionConstr does), kept while it stays active: the row holds at q̈ = 0 then.
-    const auto uk = static_cast<std::size_t>(k);
-    if (!was_active_[uk]) {
-      xi_[uk] = c.damping;
-      if (d > c.security)
-        xi_[uk] = std::max(c.damping, -ddot * (c.interaction - c.security) / (d - c.security) + c.damping);
+    const int nw = collision::contactWitnesses(placed_[static_cast<std::size_t>(c.a)],
+                                               placed_[static_cast<std::size_t>(c.b)],
+                                               result_[static_cast<std::size_t>(k)], collision::kWitnessBand,
+                                               scratch_.data(), collision::kMaxWitnesses);
+    for (int j = 1; j < nw; ++j) {
+      if (used == rows_) {
+        ++dropped_witnesses_;
+        continue;
+      }
+      row_witness_[static_cast<std::size_t>(used)] = scratch_[static_cast<std::size_t>(j)];
+      writeRow(p, used++, k, out);
     }
+  }
+  active_ = used;
+  // A pair entering δi faster than ξ allows gets the damping that its rows' entry speeds need (as
+  // Tasks' CollisionConstr does), kept while it stays active: its rows hold at q̈ = 0 then.
+  for (int r = 0; r < used; ++r) {
+    const auto uk = static_cast<std::size_t>(row_pair_[static_cast<std::size_t>(r)]);
+    if (!was_active_[uk] && !now_active_[uk]) xi_[uk] = pairs_[uk].damping;
     now_active_[uk] = 1;
-    // d_{k+1} − d = Δt ḋ + Δt² (g q̈ + ½ D) ≥ −Δt ξ' e (collision_constraint.hpp).
-    out.l(r) = -xi_[uk] * (d - c.security) / (c.interaction - c.security) - ddot - 0.5 * dt * drift;
+  }
+  for (int r = 0; r < used; ++r) {
+    const auto ur = static_cast<std::size_t>(r);
+    const auto uk = static_cast<std::size_t>(row_pair_[ur]);
+    if (was_active_[uk] || !(row_e_[ur] > 0.0)) continue;
+    xi_[uk] = std::max(xi_[uk], -row_ddot_[ur] / row_e_[ur] + pairs_[uk].damping);
+  }
+  // d_{k+1} − d = Δt ḋ + Δt² (g q̈ + ½ D) ≥ −Δt ξ' e (collision_constraint.hpp).
+  for (int r = 0; r < used; ++r) {
+    const auto ur = static_cast<std::size_t>(r);
+    out.l(r) = -xi_[static_cast<std::size_t>(row_pair_[ur])] * row_e_[ur] - row_rate_[ur];
   }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     was_active_[k] = now_active_[k];
     now_active_[k] = 0;
   }
+}
+
+void CollisionConstraint::writeRow(const MultiRobotProblem& p, int r, int k, ConstraintRows& out) noexcept {
+  const auto ur = static_cast<std::size_t>(r);
+  const CollisionPair& c = pairs_[static_cast<std::size_t>(k)];
+  const collision::DistanceResult& res = row_witness_[ur].result;
+  const CollisionBody& ba = body(c.a);
+  const CollisionBody& bb = body(c.b);
+  const Entity& ea = p.entity(ba.entity);
+  const Entity& eb = p.entity(bb.entity);
+  const Pose fa = ea.framePose(ba.frame), fb = eb.framePose(bb.frame);
+  const Eigen::Vector3d la = fa.R.transpose() * (res.a - fa.p);  // witnesses in frame coordinates
+  const Eigen::Vector3d lb = fb.R.transpose() * (res.b - fb.p);
+  auto Ja = Ja_.leftCols(ea.nv());
+  auto Jb = Jb_.leftCols(eb.nv());
+  ea.frameJacobian(ba.frame, la, Ja);
+  eb.frameJacobian(bb.frame, lb, Jb);
+  const Eigen::Vector3d& nrm = res.normal;
+  const double dt = p.settings().dt;
+  const int oa = p.velocityOffset(ba.entity), ob = p.velocityOffset(bb.entity);
+  out.C.block(r, oa, 1, ea.nv()).noalias() -= dt * nrm.transpose() * Ja.bottomRows<3>();
+  out.C.block(r, ob, 1, eb.nv()).noalias() += dt * nrm.transpose() * Jb.bottomRows<3>();
+  // The witnesses' twists (ω; velocity of the witness point), then ḋ and the drift of d̈ at q̈ = 0:
+  // the witnesses' J̇ v and the curvature part (collision/distance_rate.hpp).
+  Vector6d ta, tb;
+  ta.noalias() = Ja * ea.v();
+  tb.noalias() = Jb * eb.v();
+  const double ddot = nrm.dot(tb.tail<3>() - ta.tail<3>());
+  collision::RigidMotion ma, mb;
+  ma.omega = ta.head<3>();
+  ma.v = ta.tail<3>();
+  ma.at = res.a;
+  mb.omega = tb.head<3>();
+  mb.v = tb.tail<3>();
+  mb.at = res.b;
+  const double drift = nrm.dot(eb.frameBiasAcceleration(bb.frame, lb).tail<3>() -
+                               ea.frameBiasAcceleration(ba.frame, la).tail<3>()) +
+                       collision::distanceCurvature(res, ba.shape.radius, bb.shape.radius, ma, mb);
+  row_pair_[ur] = k;
+  row_e_[ur] = (res.distance - c.security) / (c.interaction - c.security);
+  row_ddot_[ur] = ddot;
+  row_rate_[ur] = ddot + 0.5 * dt * drift;
 }
 
 double CollisionConstraint::measureMinDistance(const MultiRobotProblem& p, int* pair_index) const noexcept {

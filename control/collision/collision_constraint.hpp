@@ -17,14 +17,19 @@
 // on its own entity's columns; both on the same columns for a self-collision pair). Pairs are
 // tested first by their bounding balls (collision/bounding_sphere.hpp); those within δi get an
 // exact distance; at most `rows` of them, the nearest to their security distance first, get a row;
-// the other rows stay free. A pair that enters δi approaching faster than ξ allows gets, until it
-// leaves, the damping its entry speed needs, ξ' = max(ξ, −ḋ (δi − δs)/(d − δs) + ξ) (Tasks'
-// CollisionConstr does the same), so that the row never starts infeasible.
+// the other rows stay free. Where the nearest features of a pair are a face or an edge, the rows
+// left over after every candidate pair has its row go to the pair's other witnesses, the corners of
+// its contact region (collision/contact_witnesses.hpp), each a damper row of the same form on its
+// own witness pair with its own distance: one row on a witness that jumps over the region cannot
+// hold it. A pair that enters δi approaching faster than ξ allows gets, until it leaves, the
+// damping its entry speed needs, ξ' = max(ξ, −ḋ (δi − δs)/(d − δs) + ξ) over its rows (Tasks'
+// CollisionConstr does the same), so that its rows never start infeasible.
 //
 // Real-time: update() is noexcept and allocation-free; shapes, pairs and Jacobian work space are
 // fixed at construction.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -32,6 +37,7 @@
 
 #include <Eigen/Core>
 
+#include "collision/contact_witnesses.hpp"
 #include "collision/distance.hpp"
 #include "collision/shape.hpp"
 #include "problem/constraint.hpp"
@@ -78,8 +84,13 @@ class CollisionConstraint final : public Constraint {
   double dampingInUse(int k) const noexcept { return xi_[static_cast<std::size_t>(k)]; }
   /// The pair that row r (< activeRows()) constrained at the last update.
   int rowPair(int r) const noexcept { return row_pair_[static_cast<std::size_t>(r)]; }
+  /// The witness pair that row r (< activeRows()) held at the last update: the parts of the two
+  /// shapes (the whole shapes for a pair's first row) and their distance, witnesses and normal.
+  const collision::Witness& rowWitness(int r) const noexcept { return row_witness_[static_cast<std::size_t>(r)]; }
   /// Pairs within δi at the last update that did not get a row (more than `rows`).
   int droppedPairs() const noexcept { return dropped_; }
+  /// Witnesses beyond a pair's first that did not get a row at the last update (rows all used).
+  int droppedWitnesses() const noexcept { return dropped_witnesses_; }
 
   /// The exact smallest distance over every pair at the entities' current state (after their
   /// update()), no filter: an independent measurement for reports. Allocation-free.
@@ -87,6 +98,8 @@ class CollisionConstraint final : public Constraint {
 
  private:
   collision::PlacedShape placed(const MultiRobotProblem& p, int body) const noexcept;
+  /// Writes row r's coefficients for its witness (row_witness_[r]) of pair k; keeps e, ḋ and the rate.
+  void writeRow(const MultiRobotProblem& p, int r, int k, ConstraintRows& out) noexcept;
 
   std::vector<CollisionBody> bodies_;
   std::vector<CollisionPair> pairs_;
@@ -99,9 +112,12 @@ class CollisionConstraint final : public Constraint {
   std::vector<double> xi_;  ///< damping in use per pair (set on entry)
   std::vector<std::uint8_t> was_active_, now_active_;
   std::vector<int> row_pair_;
+  std::vector<collision::Witness> row_witness_;
+  std::vector<double> row_e_, row_ddot_, row_rate_;  ///< per row: e, ḋ, ḋ + ½ Δt D
+  std::array<collision::Witness, collision::kMaxWitnesses> scratch_{};
   Eigen::MatrixXd Ja_, Jb_;
   double min_distance_ = std::numeric_limits<double>::infinity();
-  int active_ = 0, dropped_ = 0;
+  int active_ = 0, dropped_ = 0, dropped_witnesses_ = 0;
 };
 
 }  // namespace mrqp::problem
