@@ -7,18 +7,12 @@
 
 #include "counting_allocator.hpp"
 #include "estimation_loop_setup.hpp"
+#include "loop_cycle_allocations.hpp"
 
 TEST_CASE("estimation: 10,000 loop cycles with the estimator allocate nothing", "[estimation][realtime]") {
   esttest::EstimationSetup s(esttest::sceneText("door_estimate.yaml"), "door_estimate.yaml", 0.2, 0.01);
   REQUIRE(s.boot());
-  for (int k = 0; k < 10; ++k) s.cycle();  // warm-up: first solves
-  long in_cycle = 0;
-  for (int k = 0; k < 10000; ++k) {
-    in_cycle += mrqp::testing::allocationsIn([&] { s.ctrl->cycle(s.now); });
-    s.plant->inner().setFollowing(!s.ctrl->safeStopped());
-    s.rig->advanceTo(s.now + s.period);
-    s.now += s.period;
-  }
+  const long in_cycle = mrqp::testing::loopCycleAllocations(s, 10000);  // after 10 warm-up cycles
   CHECK_FALSE(s.ctrl->safeStopped());
   CHECK(s.hook->updates(0) > 2000);  // the filter ran (settled after 0.5 s, 250 Hz)
   CHECK(in_cycle == 0);
