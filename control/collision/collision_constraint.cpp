@@ -97,9 +97,10 @@ void CollisionConstraint::update(const MultiRobotProblem& p, ConstraintRows& out
     writeRow(p, r, k, out);
   }
   int used = n;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < n && used < rows_; ++i) {
     const int k = candidates_[static_cast<std::size_t>(i)];
     const CollisionPair& c = pairs_[static_cast<std::size_t>(k)];
+    if (urgency(k) >= kWitnessUrgency) break;  // sorted: the others are farther still
     const int nw = collision::contactWitnesses(placed_[static_cast<std::size_t>(c.a)],
                                                placed_[static_cast<std::size_t>(c.b)],
                                                result_[static_cast<std::size_t>(k)], collision::kWitnessBand,

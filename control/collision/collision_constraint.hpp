@@ -17,8 +17,9 @@
 // on its own entity's columns; both on the same columns for a self-collision pair). Pairs are
 // tested first by their bounding balls (collision/bounding_sphere.hpp); those within δi get an
 // exact distance; at most `rows` of them, the nearest to their security distance first, get a row;
-// the other rows stay free. Where the nearest features of a pair are a face or an edge, the rows
-// left over after every candidate pair has its row go to the pair's other witnesses, the corners of
+// the other rows stay free. Where the nearest features of a pair in the nearer half of its range
+// are a face or an edge, the rows left over after every candidate pair has its row go to the
+// pair's other witnesses, the corners of
 // its contact region (collision/contact_witnesses.hpp), each a damper row of the same form on its
 // own witness pair with its own distance: one row on a witness that jumps over the region cannot
 // hold it. A pair that enters δi approaching faster than ξ allows gets, until it leaves, the
@@ -60,6 +61,10 @@ struct CollisionPair {
 
 class CollisionConstraint final : public Constraint {
  public:
+  /// Pairs get their further witnesses (contact_witnesses.hpp) once (d − δs)/(δi − δs) is below
+  /// this: in the nearer half of their damper's range, where the bodies are held.
+  static constexpr double kWitnessUrgency = 0.5;
+
   /// `keep_alive` holds whatever the shapes point to (hull vertices); `rows` ≥ 1 inequality rows
   /// are reserved; `max_nv` is the largest nv of the entities involved (Jacobian work space).
   CollisionConstraint(std::vector<CollisionBody> bodies, std::vector<CollisionPair> pairs, int rows,
@@ -89,7 +94,8 @@ class CollisionConstraint final : public Constraint {
   const collision::Witness& rowWitness(int r) const noexcept { return row_witness_[static_cast<std::size_t>(r)]; }
   /// Pairs within δi at the last update that did not get a row (more than `rows`).
   int droppedPairs() const noexcept { return dropped_; }
-  /// Witnesses beyond a pair's first that did not get a row at the last update (rows all used).
+  /// Witnesses beyond a pair's first that did not get a row at the last update (rows all used;
+  /// the pairs after the one that filled the rows are not searched and not counted).
   int droppedWitnesses() const noexcept { return dropped_witnesses_; }
 
   /// The exact smallest distance over every pair at the entities' current state (after their

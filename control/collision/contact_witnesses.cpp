@@ -1,6 +1,7 @@
 // Several witness pairs per pair of shapes at face or edge contact; see contact_witnesses.hpp.
 #include "collision/contact_witnesses.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace mrqp::collision {
@@ -109,6 +110,57 @@ ShapePart edgePart(const Feature& f, int e) noexcept {
   return p;
 }
 
+/// Closest points of segments [p1, q1] and [p2, q2] (Ericson, Real-Time Collision Detection 5.1.9):
+/// parameters s, t ∈ [0, 1] and the squared distance.
+double segmentSegment(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1, const Eigen::Vector3d& p2,
+                      const Eigen::Vector3d& q2, double* s, double* t) noexcept {
+  const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double tiny = 1e-18;
+  if (a <= tiny && e <= tiny) {
+    *s = *t = 0.0;
+  } else if (a <= tiny) {
+    *s = 0.0;
+    *t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= tiny) {
+      *t = 0.0;
+      *s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      *s = denom > tiny * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      *t = (b * *s + f) / e;
+      if (*t < 0.0) {
+        *t = 0.0;
+        *s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (*t > 1.0) {
+        *t = 1.0;
+        *s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return (p1 + *s * d1 - p2 - *t * d2).squaredNorm();
+}
+
+/// Distance from a world point to the core of a box, capsule or sphere in closed form; −1 for a hull
+/// (no closed form: the caller measures it).
+double pointToCore(const PlacedShape& S, const Eigen::Vector3d& x) noexcept {
+  const Eigen::Vector3d l = S.R.transpose() * (x - S.p);
+  const Shape& s = *S.shape;
+  switch (s.kind) {
+    case ShapeKind::Sphere:
+      return l.norm();
+    case ShapeKind::Capsule:
+      return Eigen::Vector3d(l.x(), l.y(), std::max(0.0, std::abs(l.z()) - s.half.z())).norm();
+    case ShapeKind::Box:
+      return (l.cwiseAbs() - s.half).cwiseMax(0.0).norm();
+    case ShapeKind::Hull:
+      return -1.0;
+  }
+  return -1.0;
+}
+
 /// The shape of a part: a hull of its one or two points with the shape's radius.
 Shape partShape(const Shape& s, const ShapePart& part) noexcept {
   Shape h;
@@ -178,10 +230,31 @@ int contactWitnesses(const PlacedShape& A, const PlacedShape& B, const DistanceR
   if (fa.nvertex <= 1 && fb.nvertex <= 1) return 1;  // vertex against vertex: unique
   Collector c{out, capacity, 1, nearest.distance + band};
   const ShapePart whole{};
-  for (int i = 0; i < fa.nvertex && fa.nvertex > 1; ++i) c.consider(A, vertexPart(fa, i), B, whole);
-  for (int i = 0; i < fb.nvertex && fb.nvertex > 1; ++i) c.consider(A, whole, B, vertexPart(fb, i));
-  for (int i = 0; i < fa.nedge; ++i)
-    for (int j = 0; j < fb.nedge; ++j) c.consider(A, edgePart(fa, i), B, edgePart(fb, j));
+  // Vertices: those farther than the band (closed form where the other shape has one) are skipped
+  // before the part's distance is measured.
+  const double ra = A.shape->radius, rb = B.shape->radius;
+  for (int i = 0; i < fa.nvertex && fa.nvertex > 1; ++i) {
+    const double d = pointToCore(B, A.R * fa.vertex[static_cast<std::size_t>(i)] + A.p);
+    if (d < 0.0 || d - ra - rb <= c.limit) c.consider(A, vertexPart(fa, i), B, whole);
+  }
+  for (int i = 0; i < fb.nvertex && fb.nvertex > 1; ++i) {
+    const double d = pointToCore(A, B.R * fb.vertex[static_cast<std::size_t>(i)] + B.p);
+    if (d < 0.0 || d - ra - rb <= c.limit) c.consider(A, whole, B, vertexPart(fb, i));
+  }
+  // Edge pairs: only crossings count (closest points inside both edges; an end is a vertex above),
+  // found in closed form first, then measured as parts (for the row's simplex).
+  for (int i = 0; i < fa.nedge; ++i) {
+    const ShapePart ea = edgePart(fa, i);
+    const Eigen::Vector3d a0 = A.R * ea.points[0] + A.p, a1 = A.R * ea.points[1] + A.p;
+    for (int j = 0; j < fb.nedge; ++j) {
+      const ShapePart eb = edgePart(fb, j);
+      double s = 0.0, t = 0.0;
+      const double d2 = segmentSegment(a0, a1, B.R * eb.points[0] + B.p, B.R * eb.points[1] + B.p, &s, &t);
+      const double reach = c.limit + ra + rb;
+      if (s <= 0.0 || s >= 1.0 || t <= 0.0 || t >= 1.0 || d2 > reach * reach) continue;
+      c.consider(A, ea, B, eb);
+    }
+  }
   return c.count;
 }
 
