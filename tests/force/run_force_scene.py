@@ -25,12 +25,12 @@ stops safely on the MuJoCo plant (JVRC-1 does not run there); for both, the same
 controller before any admittance acts).
 """
 import csv
-import json
 import math
 import os
-import re
-import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 DOOR_RMS_N = 1.5
 DOOR_FINAL_N = 1.0
@@ -83,30 +83,26 @@ def recompute(out_dir, name, dt):
     return (math.sqrt(sq / n) if n else float("nan")), n, hits
 
 
-def run(mrqp_run, scene, out_dir, extra=()):
-    cmd = [mrqp_run, scene, "--plant", "mujoco", "--out", out_dir, "--no-plots", "--quiet", *extra]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    path = os.path.join(out_dir, "summary.json")
-    if not os.path.exists(path):  # the program failed before its summary (e.g. a bad scene)
-        return p, None
-    with open(path, encoding="utf-8") as f:
-        return p, json.load(f)
+def run(program, scene, out_dir, extra=()):
+    """(the finished run, its summary.json or None when the program failed before writing it)."""
+    r = mrqp_run.run(program, scene, out_dir, plant="mujoco", args=extra)
+    return r, r.summary
 
 
-def prerequisite_missing(mrqp_run, scene, out_dir, kind, prerequisite):
+def prerequisite_missing(program, scene, out_dir, kind, prerequisite):
     """Why the outcome cannot be reached yet (a measured reason), or None. For press, JVRC-1 must
     run on the MuJoCo plant (the prerequisite scene completes its first second without a safe
     stop); for both, the scene itself must stand without force control: with --no-force-control
     no safe stop and no drive at its torque limit (else the world fights the controller before
     any admittance acts: docs/mujoco.md, "The shipped scenes on MuJoCo")."""
     if kind == "press" and prerequisite:
-        q, s = run(mrqp_run, prerequisite, out_dir + "_prerequisite", ["--duration", "1"])
+        q, s = run(program, prerequisite, out_dir + "_prerequisite", ["--duration", "1"])
         if s is None:
             print(f"the prerequisite's run failed: {q.stderr.strip()}")
             return None
         if s["safe_stop"] is not None:
             return f"{os.path.basename(prerequisite)} stops on the MuJoCo plant ({s['safe_stop']})"
-    q, s = run(mrqp_run, scene, out_dir + "_without", ["--no-force-control"])
+    q, s = run(program, scene, out_dir + "_without", ["--no-force-control"])
     if s is None:
         print(f"the run without force control failed: {q.stderr.strip()}")
         return None
@@ -122,8 +118,8 @@ def main():
     if len(sys.argv) < 5:
         print(__doc__, file=sys.stderr)
         return 2
-    mrqp_run, scene, out_dir, kind = sys.argv[1:5]
-    p, s = run(mrqp_run, scene, out_dir)
+    program, scene, out_dir, kind = sys.argv[1:5]
+    p, s = run(program, scene, out_dir)
     sys.stdout.write(p.stdout)
     sys.stderr.write(p.stderr)
     if s is None:
@@ -196,7 +192,7 @@ def main():
         return 0
     for f in outcome:
         print(f"run_force_scene: {os.path.basename(scene)}: outcome: {f}")
-    missing = prerequisite_missing(mrqp_run, scene, out_dir, kind, sys.argv[5] if len(sys.argv) > 5 else None)
+    missing = prerequisite_missing(program, scene, out_dir, kind, sys.argv[5] if len(sys.argv) > 5 else None)
     if missing:
         print(f"SKIP: the outcome is not met and its prerequisite is missing: {missing}")
         return SKIP

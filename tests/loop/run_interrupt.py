@@ -8,15 +8,18 @@ panda_door runs paced (wall clock) for up to 30 s; the signal comes 1.5 s after 
 ready. Checks: exit status 0, the "interrupted" line, summary.json's cycles fewer than planned and
 more than the cycles of 1 s, the safe exit done, no allocation in the loop, no safe stop.
 """
-import json
+import os
 import signal
 import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
+
 
 def run_once(run, scene, out, sig):
-    cmd = [run, scene, "--plant", "ideal", "--out", out, "--no-plots", "--paced", "--duration", "30"]
+    cmd = mrqp_run.command(run, scene, out, plant="ideal", duration=30, quiet=False, args=["--paced"])
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     ready = False
     started = time.monotonic()
@@ -46,8 +49,9 @@ def run_once(run, scene, out, sig):
         failures.append(f"exit status {proc.returncode}: {err}")
     if "interrupted by a signal" not in out_text:
         failures.append("no 'interrupted' line")
-    with open(out + "/summary.json", encoding="utf-8") as f:
-        s = json.load(f)
+    s = mrqp_run.read_summary(out)
+    if s is None:
+        return failures + ["no summary.json"]
     planned = round(30.0 / s["period_s"])
     if not (round(1.0 / s["period_s"]) < s["cycles"] < planned):
         failures.append(f"cycles {s['cycles']} (planned {planned})")

@@ -11,13 +11,14 @@ and slip agree with the time series of DIR/button_travel.csv; and where the cont
 estimate is largest, the QP's force on the index contact (DIR/log.csv) balances the button's spring
 read from the scene file, K q, within 10 % (the button is nearly at rest there).
 """
-import csv
-import json
 import math
+import os
 import re
-import subprocess
 import sys
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
 def urdf_button_upper(path: str) -> float:
@@ -40,25 +41,16 @@ def main() -> int:
         print(__doc__, file=sys.stderr)
         return 2
     run, scene, urdf, out, plant, max_slip = sys.argv[1:7]
-    cmd = [run, scene, "--plant", plant, "--out", out, "--no-plots", "--quiet"]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    sys.stdout.write(proc.stdout)
-    sys.stderr.write(proc.stderr)
+    r = mrqp_run.run(run, scene, out, plant=plant, echo=True)
     try:
-        with open(out + "/summary.json", encoding="utf-8") as f:
-            s = json.load(f)
-        with open(out + "/button_travel.csv", encoding="utf-8") as f:
-            rows = list(csv.DictReader(f))
+        if r.summary is None:
+            raise OSError("no summary.json")
+        s = r.summary
+        rows = r.csv_rows("button_travel.csv")
     except (OSError, ValueError) as e:
-        print(f"run_pen_click: {scene} ({plant}): exit status {proc.returncode}, no result: {e}", file=sys.stderr)
+        print(f"run_pen_click: {scene} ({plant}): exit status {r.returncode}, no result: {e}", file=sys.stderr)
         return 1
-    failures = []
-    if proc.returncode != 0:
-        failures.append(f"exit status {proc.returncode}")
-    if s["safe_stop"] is not None:
-        failures.append(f"safe stop: {s['safe_stop']}")
-    if s["allocations_in_loop"] != 0:
-        failures.append(f"{s['allocations_in_loop']} allocations in the loop")
+    failures = r.failures()
     travel = s["button_travel_max_m"]
     required = s["button_travel_required_m"]
     slip = s["pen_slip_m"]
@@ -76,8 +68,7 @@ def main() -> int:
         csv_slip = max(float(r["pen_slip_m"]) for r in rows)
         if abs(csv_travel - travel) > 1e-8 or abs(csv_slip - slip) > 1e-8:
             failures.append(f"button_travel.csv's maxima {csv_travel}, {csv_slip} differ from summary.json's")
-        with open(out + "/log.csv", encoding="utf-8") as f:
-            log = list(csv.DictReader(f))
+        log = r.csv_rows("log.csv")
         k = max(range(len(rows)), key=lambda i: float(rows[i]["button_estimate_m"]))
         q = float(rows[k]["button_estimate_m"])
         spring = scene_button_stiffness(scene) * q

@@ -7,9 +7,11 @@ Checks: exit status 0, no safe stop, the plant was MuJoCo's (the log says nothin
 the command line asks for it), no allocation in the loop, no log record dropped, the task's final
 error at most MAX_ERROR.
 """
-import json
-import subprocess
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
 def main() -> int:
@@ -17,19 +19,12 @@ def main() -> int:
         print(__doc__, file=sys.stderr)
         return 2
     run, scene, out, task, max_error = sys.argv[1:6]
-    cmd = [run, scene, "--plant", "mujoco", "--out", out, "--no-plots", "--quiet"]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    sys.stdout.write(proc.stdout)
-    sys.stderr.write(proc.stderr)
-    with open(out + "/summary.json", encoding="utf-8") as f:
-        s = json.load(f)
-    failures = []
-    if proc.returncode != 0:
-        failures.append(f"exit status {proc.returncode}")
-    if s["safe_stop"] is not None:
-        failures.append(f"safe stop: {s['safe_stop']}")
-    if s["allocations_in_loop"] != 0:
-        failures.append(f"{s['allocations_in_loop']} allocations in the loop")
+    r = mrqp_run.run(run, scene, out, plant="mujoco", echo=True)
+    failures = r.failures()
+    s = r.summary
+    if s is None:
+        print(f"run_scene_summary: {scene}: {failures}", file=sys.stderr)
+        return 1
     if s["log_records_dropped"] != 0:
         failures.append(f"{s['log_records_dropped']} log records dropped")
     error = s["task_errors_final"][task]
