@@ -135,14 +135,14 @@ static int unwrappedMain(int argc, char** argv) {
   long streamed = 0;
   for (long k = 0; k < o.cycles && g_stop == 0; ++k) {
     if (k > 0) now = clock.wait();  // the first cycle is the deadline the boot ended on
-    const TimeNs t0 = monotonicNow();
+    mon.phases().begin();
     router.poll(now);
     const FaultReport& r = arm->update(now);
     mon.note(r);
     mon.nextCycle();
     ++streamed;
     mon.check(k, now - stream_start, r, *arm);
-    const TimeNs t1 = monotonicNow();
+    mon.phases().lap(StreamMonitor::kRead);
     const double t = static_cast<double>(k) / o.rate;
     for (std::size_t j = 0; j < n; ++j) {
       const double target = q0[j] + o.amplitude * std::sin(w * t) * (1.0 - 0.1 * static_cast<double>(j % 5));
@@ -150,7 +150,7 @@ static int unwrappedMain(int argc, char** argv) {
       mon.sent(j, target);
     }
     frames_sent += arm->transmit(now);
-    mon.phases(t1 - t0, monotonicNow() - t1);
+    mon.phases().lap(StreamMonitor::kWrite);
   }
   const bool signalled = g_stop != 0;
   const std::vector<DeviceFaults> fin(arm->faults().devices, arm->faults().devices + n);  // before the exit

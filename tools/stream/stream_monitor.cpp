@@ -65,14 +65,6 @@ void StreamMonitor::check(long k, TimeNs since_start, const FaultReport& r, cons
   }
 }
 
-void StreamMonitor::phases(TimeNs read, TimeNs write) noexcept {
-  ++phase_count_;
-  read_sum_ += read;
-  write_sum_ += write;
-  read_max_ = std::max(read_max_, read);
-  write_max_ = std::max(write_max_, write);
-}
-
 void StreamMonitor::printEvents() const {
   for (std::size_t e = 0; e < event_count_; ++e) {
     std::printf("mrqp-stream: cycle %ld: drive %zu: %s\n", events_[e].cycle, events_[e].drive,
@@ -81,10 +73,9 @@ void StreamMonitor::printEvents() const {
 }
 
 void StreamMonitor::printPhases() const {
-  const double n = static_cast<double>(std::max<std::uint64_t>(phase_count_, 1));
   std::printf("mrqp-stream: phases: read_mean_us=%.1f read_max_us=%.1f write_mean_us=%.1f write_max_us=%.1f\n",
-              static_cast<double>(read_sum_) / n / 1e3, static_cast<double>(read_max_) / 1e3,
-              static_cast<double>(write_sum_) / n / 1e3, static_cast<double>(write_max_) / 1e3);
+              phases_.mean(kRead) / 1e3, static_cast<double>(phases_.max(kRead)) / 1e3, phases_.mean(kWrite) / 1e3,
+              static_cast<double>(phases_.max(kWrite)) / 1e3);
 }
 
 void StreamMonitor::printDrives(const ArmConfig& cfg, const std::vector<DeviceFaults>& faults) const {

@@ -7,6 +7,8 @@
 
 #include <mrqp/drivers/arm_driver.hpp>
 
+#include "loop/phase_times.hpp"
+
 #include <cstdint>
 #include <vector>
 
@@ -24,8 +26,9 @@ class StreamMonitor {
   void check(long k, drivers::TimeNs since_start, const drivers::FaultReport& r, const drivers::ArmDriver& arm) noexcept;
   /// The position sent to drive j this cycle.
   void sent(std::size_t j, double q) noexcept { sent_[j] = q; }
-  /// The time of the cycle's read (poll + update) and write (setpoints + transmit) phases.
-  void phases(drivers::TimeNs read, drivers::TimeNs write) noexcept;
+  /// The cycle's phases: read (poll + update), then write (setpoints + transmit), timed by laps.
+  enum Phase : std::size_t { kRead = 0, kWrite, kPhases };
+  loop::PhaseTimes<kPhases>& phases() noexcept { return phases_; }
   void flags(std::uint32_t f) noexcept { all_flags_ |= f; }
   void nextCycle() noexcept { ++cycle_; }
 
@@ -59,8 +62,7 @@ class StreamMonitor {
   std::uint64_t fail_cycles_ = 0;
   std::uint32_t fail_flags_ = 0;
   std::uint32_t all_flags_ = 0;
-  std::uint64_t phase_count_ = 0;
-  drivers::TimeNs read_sum_ = 0, read_max_ = 0, write_sum_ = 0, write_max_ = 0;
+  loop::PhaseTimes<kPhases> phases_;
 };
 
 }  // namespace mrqp::stream
