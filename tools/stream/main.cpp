@@ -1,6 +1,6 @@
 // mrqp-stream: streams a sine per joint through the ArmDriver on a SocketCAN interface at a fixed
-// rate for N cycles, checks the feedback, prints a summary and exits non-zero on failure
-// (README.md). A short program over the loop layer (control/loop): absolute deadlines
+// rate for N cycles (or on the simulated bus with emulated drives, `--interface sim`), checks the
+// feedback, prints a summary and exits non-zero on failure (README.md). A short program over the loop layer (control/loop): absolute deadlines
 // (DeadlineClock), the devices' boot and safe exit (DeviceSet, bootDevices / exitDevices, as the
 // controller boots and stops its devices), the real-time set-up (--realtime, setupRealtime).
 // Whatever ends it (the last cycle, SIGINT/SIGTERM, a failed boot or enable), the drives are left
@@ -9,7 +9,6 @@
 #include <mrqp/drivers/arm_driver.hpp>
 #include <mrqp/drivers/bus_router.hpp>
 #include <mrqp/drivers/canopen/canopen_text.hpp>
-#include <mrqp/drivers/socketcan_bus.hpp>
 
 #include <signal.h>
 
@@ -19,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "loop/deadline_clock.hpp"
 #include "loop/device_set.hpp"
 #include "loop/realtime.hpp"
+#include "stream_bus.hpp"
 #include "stream_monitor.hpp"
 #include "stream_options.hpp"
 
@@ -51,15 +50,12 @@ static int unwrappedMain(int argc, char** argv) {
     std::fprintf(stderr, "mrqp-stream: %s\n", err.c_str());
     return 2;
   }
-  SocketCanBus bus;
-  SocketCanConfig sc;
-  sc.interface = o.interface;
-  sc.receive_own = true;  // the arm master takes a boot-up only after its reset's own echo
-  if (!bus.open(sc, &err)) {
+  mrqp::stream::StreamBus bus(cfg.cycle_period);  // SocketCAN, or the simulated bus with emulated drives
+  if (!bus.open(o, &err)) {
     std::fprintf(stderr, "mrqp-stream: %s: %s\n", o.interface.c_str(), err.c_str());
-    return 1;
+    return o.interface == "sim" ? 2 : 1;
   }
-  BusRouter router(bus);
+  BusRouter router(bus.bus());
   auto arm = ArmDriver::create({&router}, cfg, &err);
   if (!arm) {
     std::fprintf(stderr, "mrqp-stream: %s\n", err.c_str());
@@ -84,12 +80,11 @@ static int unwrappedMain(int argc, char** argv) {
   StreamMonitor mon(n, o.max_error, hb_drive);
   mrqp::loop::DeviceSet devices({&router}, {arm.get()});
   const TimeNs period = cfg.cycle_period;
-  mrqp::loop::DeadlineClock clock(period);
-  TimeNs now = clock.start();
+  TimeNs now = bus.start();
   auto next = [&]() {  // after each boot / exit cycle: its faults, then the next deadline
     mon.note(arm->faults());
     mon.nextCycle();
-    return clock.wait();
+    return bus.next();
   };
   // Boot and enable at the streaming rate (up to 20 s); `now` ends on the next cycle's deadline.
   const auto boot = mrqp::loop::bootDevices(devices, now, period, 20.0, next, [] { return g_stop != 0; });
@@ -98,7 +93,7 @@ static int unwrappedMain(int argc, char** argv) {
 
   auto safe_exit = [&]() -> bool {
     const double timeout_s = static_cast<double>(cfg.exit_timeout + 20 * period) * 1e-9;
-    const auto ex = mrqp::loop::exitDevices(devices, now, period, timeout_s, [&]() { return clock.wait(); });
+    const auto ex = mrqp::loop::exitDevices(devices, now, period, timeout_s, [&]() { return bus.next(); });
     std::printf("mrqp-stream: safe exit: %s after %ld cycles (%s, then %s)\n",
                 ex.done ? "drives stopped" : "NOT completed", ex.cycles,
                 cfg.exit_stop == ExitStop::QuickStop ? "quick stop" : "disable voltage", exitText(cfg));
@@ -134,7 +129,7 @@ static int unwrappedMain(int argc, char** argv) {
   std::uint64_t frames_sent = 0;
   long streamed = 0;
   for (long k = 0; k < o.cycles && g_stop == 0; ++k) {
-    if (k > 0) now = clock.wait();  // the first cycle is the deadline the boot ended on
+    if (k > 0) now = bus.next();  // the first cycle is the deadline the boot ended on
     mon.phases().begin();
     router.poll(now);
     const FaultReport& r = arm->update(now);
@@ -156,12 +151,12 @@ static int unwrappedMain(int argc, char** argv) {
   const std::vector<DeviceFaults> fin(arm->faults().devices, arm->faults().devices + n);  // before the exit
   const BusFaults bf = arm->faults().buses[0];
   const SyncStats sync = arm->syncStats(0);
-  now = clock.wait();
+  now = bus.next();
   const bool exited = safe_exit();
 
   std::printf("mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
               streamed, o.rate, static_cast<unsigned long long>(frames_sent),
-              static_cast<unsigned long long>(clock.overruns()), static_cast<double>(clock.worstLateness()) / 1000.0);
+              static_cast<unsigned long long>(bus.overruns()), static_cast<double>(bus.worstLateness()) / 1000.0);
   mon.printDrives(cfg, fin);
   std::uint64_t emcy_total = 0, corrupt_total = 0;
   for (const DeviceFaults& df : fin) {
@@ -175,7 +170,7 @@ static int unwrappedMain(int argc, char** argv) {
       static_cast<double>(sync.period) / 1e3, static_cast<double>(sync.min_interval) / 1e3,
       static_cast<double>(sync.max_interval) / 1e3, static_cast<double>(sync.max_jitter) / 1e3,
       sync.mean_abs_jitter_ns / 1e3, sync.timeout_factor, static_cast<unsigned long long>(sync.over_timeout),
-      bus.echoesOwn() ? "timed on the TX echo" : "timed at transmit");
+      bus.bus().echoesOwn() ? "timed on the TX echo" : "timed at transmit");
   mon.printEvents();
   mon.printPhases();
   std::printf(

@@ -27,7 +27,7 @@ bool parseU32(const std::string& s, unsigned long max, unsigned long* out) {
 
 void usage() {
   std::fprintf(stderr,
-               "usage: mrqp-stream [--interface IF] [--nodes 1-7|1,2,3] [--rate HZ] [--cycles N]\n"
+               "usage: mrqp-stream [--interface IF|sim] [--nodes 1-7|1,2,3] [--rate HZ] [--cycles N]\n"
                "       [--config EMU.yaml] [--amplitude RAD] [--frequency HZ] [--max-error RAD]\n"
                "       [--heartbeat-ms MS] [--heartbeat-timeout-ms MS] [--sdo-timeout-ms MS] "
                "[--feedback-missing-cycles N]\n"
