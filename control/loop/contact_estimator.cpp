@@ -124,6 +124,24 @@ void ContactEstimator::applyIncrement(Target& t) noexcept {
   e.v() = v_save_.head(nv);
 }
 
+void ContactEstimator::dropFree(int c, Target& t, int i) const noexcept {
+  // A contact's free directions (problem/contact.hpp) hold nothing: their rows leave the fit.
+  const problem::ContactDesc& d = p_.contact(c);
+  if (d.free == 0) return;
+  const Eigen::Matrix3d Rc = p_.entity(d.entity).framePose(d.frame).R * problem::contactFrame(d.normal);
+  Eigen::Matrix3d P_lin = Eigen::Matrix3d::Identity(), P_ang = Eigen::Matrix3d::Identity();
+  for (int k = 0; k < 3; ++k) {
+    if ((d.free >> k) & 1u) P_lin -= Rc.col(k) * Rc.col(k).transpose();
+    if ((d.free >> (k + 3)) & 1u) P_ang -= Rc.col(k) * Rc.col(k).transpose();
+  }
+  t.b.segment<3>(6 * i) = P_ang * t.b.segment<3>(6 * i);
+  t.b.segment<3>(6 * i + 3) = P_lin * t.b.segment<3>(6 * i + 3);
+  for (int j = 0; j < t.count; ++j) {
+    t.A.block<3, 1>(6 * i, j) = P_ang * t.A.block<3, 1>(6 * i, j);
+    t.A.block<3, 1>(6 * i + 3, j) = P_lin * t.A.block<3, 1>(6 * i + 3, j);
+  }
+}
+
 void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& links, int n) noexcept {
   problem::Entity& e = p_.entity(t.entity);
   double worst = 0.0;
@@ -144,6 +162,7 @@ void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& link
       t.b.segment<3>(6 * i + 3) = dp;
       e.frameJacobian(frame, Eigen::Vector3d::Zero(), J_.leftCols(e.nv()));
       t.A.middleRows(6 * i, 6) = J_.middleCols(t.first, t.count);
+      dropFree(c, t, i);
     }
     if (it == iterations_ || worst < 1e-10) break;
     const int rows = 6 * n;
@@ -184,6 +203,7 @@ void ContactEstimator::fitVelocity(Target& t, const std::array<int, kMaxLinks>& 
     Eigen::Matrix<double, 6, 1> rest = J_.leftCols(nv) * e.v();
     rest.noalias() -= J_.middleCols(t.first, t.count) * e.v().segment(t.first, t.count);
     t.b.segment<6>(6 * i) = want - rest;
+    dropFree(c, t, i);
   }
   const int rows = 6 * n;
   t.N.noalias() = t.A.topRows(rows).transpose() * t.A.topRows(rows);

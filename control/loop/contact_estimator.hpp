@@ -73,6 +73,8 @@ class ContactEstimator {
   problem::Pose targetPose(int contact, bool surface_side) const noexcept;
   int gather(const Target& t, std::array<int, kMaxLinks>& links,
              const std::vector<std::uint8_t>& known) const noexcept;
+  // Removes the rows of contact c's free directions from block i of t's fit.
+  void dropFree(int c, Target& t, int i) const noexcept;
   void fitPose(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int nlinks) noexcept;
   void applyIncrement(Target& t) noexcept;
