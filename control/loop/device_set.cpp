@@ -74,7 +74,8 @@ bool DeviceSet::exitCycle(drivers::TimeNs now) noexcept {
 }
 
 bool DeviceSet::exitDone() const noexcept {
-  return std::all_of(arms_.begin(), arms_.end(), [](const drivers::ArmDriver* a) { return a->safeExitDone(); });
+  return std::all_of(arms_.begin(), arms_.end(),
+                     [](const drivers::ArmDriver* a) { return a->safeExitDone(); });
 }
 
 LifecycleResult bootDevices(DeviceSet& set, drivers::TimeNs& now, drivers::TimeNs period, double timeout_s,

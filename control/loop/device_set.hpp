@@ -58,11 +58,12 @@ using StopRequested = std::function<bool()>;
 
 /// Boots and enables every device of `set` (see device_lifecycle.hpp for a Controller); ends
 /// early when an arm driver's boot has failed or `stop` says so. `now` is advanced per cycle.
-LifecycleResult bootDevices(DeviceSet& set, drivers::TimeNs& now, drivers::TimeNs period, double timeout_s = 10.0,
-                            const NextCycleTime& next = NextCycleTime(), const StopRequested& stop = StopRequested());
+LifecycleResult bootDevices(DeviceSet& set, drivers::TimeNs& now, drivers::TimeNs period,
+                            double timeout_s = 10.0, const NextCycleTime& next = NextCycleTime(),
+                            const StopRequested& stop = StopRequested());
 
 /// The safe exit of every device of `set`.
-LifecycleResult exitDevices(DeviceSet& set, drivers::TimeNs& now, drivers::TimeNs period, double timeout_s = 2.0,
-                            const NextCycleTime& next = NextCycleTime());
+LifecycleResult exitDevices(DeviceSet& set, drivers::TimeNs& now, drivers::TimeNs period,
+                            double timeout_s = 2.0, const NextCycleTime& next = NextCycleTime());
 
 }  // namespace mrqp::loop

@@ -68,7 +68,8 @@ struct Bench {
 
 }  // namespace
 
-TEST_CASE("loop: a device set boots, enables and stops arm drives as the firmware sees it", "[loop][devices]") {
+TEST_CASE("loop: a device set boots, enables and stops arm drives as the firmware sees it",
+          "[loop][devices]") {
   const bool quick = GENERATE(true, false);
   Bench b({1000, -2500}, quick ? ExitStop::QuickStop : ExitStop::DisableVoltage,
           quick ? ExitNmt::PreOperational : ExitNmt::Stopped);
@@ -114,7 +115,8 @@ TEST_CASE("loop: a device set's boot ends early on a failed boot or a stop reque
     Bench b({0});
     DeviceSet set({b.router.get()}, {b.arm.get()});
     int asked = 0;
-    const auto boot = mrqp::loop::bootDevices(set, b.t, b.period, 5.0, b.next(), [&] { return ++asked >= 3; });
+    const auto boot =
+        mrqp::loop::bootDevices(set, b.t, b.period, 5.0, b.next(), [&] { return ++asked >= 3; });
     CHECK_FALSE(boot.done);
     CHECK(boot.cycles == 3);
     CHECK(b.t == 3 * b.period);

@@ -51,7 +51,9 @@ TEST_CASE("loop: phase times from laps of the clock", "[loop][timing]") {
   busy(std::chrono::microseconds(100));
   pt.lap(1);
   const auto t2 = clock::now();
-  const auto ns = [](clock::duration x) { return std::chrono::duration_cast<std::chrono::nanoseconds>(x).count(); };
+  const auto ns = [](clock::duration x) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(x).count();
+  };
   CHECK(pt.max(0) >= 300000);
   CHECK(pt.max(1) >= 100000);
   // Both phases together within what the other clock saw around them.

@@ -18,7 +18,8 @@ int SetStatePlant::add(const std::string& name, const Eigen::VectorXd& q, Eigen:
   return static_cast<int>(names_.size()) - 1;
 }
 
-void SetStatePlant::place(int entity, const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation) {
+void SetStatePlant::place(int entity, const Eigen::Vector3d& position,
+                          const Eigen::Quaterniond& orientation) {
   Eigen::VectorXd& x = q(entity);
   x.head<3>() = position;
   x(3) = orientation.w();
@@ -34,7 +35,8 @@ int SetStatePlant::entityHandle(const std::string& entity) const {
   return -1;
 }
 
-void SetStatePlant::entityState(int entity, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const noexcept {
+void SetStatePlant::entityState(int entity, Eigen::Ref<Eigen::VectorXd> q,
+                                Eigen::Ref<Eigen::VectorXd> v) const noexcept {
   const auto e = static_cast<std::size_t>(entity);
   q = q_[e];
   if (v.size() == v_[e].size()) {

@@ -43,7 +43,8 @@ class SetStatePlant final : public loop::Plant {
   loop::ImuSample imu(int) const noexcept override { return {}; }
   void step(double) noexcept override {}
   double time() const noexcept override { return 0.0; }
-  void entityState(int entity, Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> v) const noexcept override;
+  void entityState(int entity, Eigen::Ref<Eigen::VectorXd> q,
+                   Eigen::Ref<Eigen::VectorXd> v) const noexcept override;
 
  private:
   std::vector<std::string> names_;

@@ -67,11 +67,13 @@ static int unwrappedMain(int argc, char** argv) {
     if (cfg.drives[j].node == o.expect_heartbeat_loss) hb_drive = static_cast<int>(j);
   }
   if (o.expect_heartbeat_loss != 0 && hb_drive < 0) {
-    std::fprintf(stderr, "mrqp-stream: --expect-heartbeat-loss %d: not a streamed node\n", o.expect_heartbeat_loss);
+    std::fprintf(stderr, "mrqp-stream: --expect-heartbeat-loss %d: not a streamed node\n",
+                 o.expect_heartbeat_loss);
     return 2;
   }
   if (o.realtime) {
-    for (const std::string& m : mrqp::loop::setupRealtime().messages) std::printf("mrqp-stream: realtime: %s\n", m.c_str());
+    for (const std::string& m : mrqp::loop::setupRealtime().messages)
+      std::printf("mrqp-stream: realtime: %s\n", m.c_str());
   }
   signal(SIGINT, onSignal);
   signal(SIGTERM, onSignal);
@@ -154,9 +156,10 @@ static int unwrappedMain(int argc, char** argv) {
   now = bus.next();
   const bool exited = safe_exit();
 
-  std::printf("mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
-              streamed, o.rate, static_cast<unsigned long long>(frames_sent),
-              static_cast<unsigned long long>(bus.overruns()), static_cast<double>(bus.worstLateness()) / 1000.0);
+  std::printf(
+      "mrqp-stream: summary: cycles=%ld rate=%.1fHz frames_sent=%llu overruns=%llu worst_late_us=%.1f\n",
+      streamed, o.rate, static_cast<unsigned long long>(frames_sent),
+      static_cast<unsigned long long>(bus.overruns()), static_cast<double>(bus.worstLateness()) / 1000.0);
   mon.printDrives(cfg, fin);
   std::uint64_t emcy_total = 0, corrupt_total = 0;
   for (const DeviceFaults& df : fin) {
@@ -164,7 +167,8 @@ static int unwrappedMain(int argc, char** argv) {
     corrupt_total += df.corrupt_frames;
   }
   std::printf(
-      "mrqp-stream: sync: syncs=%llu intervals=%llu period_us=%.1f min_us=%.1f max_us=%.1f max_jitter_us=%.1f "
+      "mrqp-stream: sync: syncs=%llu intervals=%llu period_us=%.1f min_us=%.1f max_us=%.1f "
+      "max_jitter_us=%.1f "
       "mean_abs_jitter_us=%.1f over_%.1fx=%llu (%s)\n",
       static_cast<unsigned long long>(sync.syncs), static_cast<unsigned long long>(sync.intervals),
       static_cast<double>(sync.period) / 1e3, static_cast<double>(sync.min_interval) / 1e3,
@@ -178,18 +182,21 @@ static int unwrappedMain(int argc, char** argv) {
       "bus_error_events=%llu tx_queue_full=%llu\n",
       static_cast<unsigned long long>(emcy_total), static_cast<unsigned long long>(corrupt_total),
       static_cast<unsigned long long>(bf.unknown_total), static_cast<unsigned long long>(bf.rejected_total),
-      static_cast<unsigned long long>(bf.error_events_total), static_cast<unsigned long long>(bf.tx_queue_full_total));
+      static_cast<unsigned long long>(bf.error_events_total),
+      static_cast<unsigned long long>(bf.tx_queue_full_total));
   std::printf("mrqp-stream: flags seen: %s\n", faultFlagsStr(mon.allFlags()).c_str());
   bool ok = mon.failedCycles() == 0 && exited && !signalled;
-  if (signalled) std::printf("mrqp-stream: FAIL: stopped by a signal after %ld of %ld cycles\n", streamed, o.cycles);
+  if (signalled)
+    std::printf("mrqp-stream: FAIL: stopped by a signal after %ld of %ld cycles\n", streamed, o.cycles);
   if (!ok) {
-    std::printf("mrqp-stream: FAIL: %llu cycle(s) failed: %s\n", static_cast<unsigned long long>(mon.failedCycles()),
-                faultFlagsStr(mon.failFlags()).c_str());
+    std::printf("mrqp-stream: FAIL: %llu cycle(s) failed: %s\n",
+                static_cast<unsigned long long>(mon.failedCycles()), faultFlagsStr(mon.failFlags()).c_str());
   }
   if (hb_drive >= 0) {
     const auto hj = static_cast<std::size_t>(hb_drive);
     if (!mon.heartbeatLost(hj)) {
-      std::printf("mrqp-stream: FAIL: heartbeat loss of node %d expected, not detected\n", o.expect_heartbeat_loss);
+      std::printf("mrqp-stream: FAIL: heartbeat loss of node %d expected, not detected\n",
+                  o.expect_heartbeat_loss);
       ok = false;
     } else {
       mon.printHeartbeatLoss(hj, o.expect_heartbeat_loss, o.heartbeat_timeout_ms);

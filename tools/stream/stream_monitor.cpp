@@ -30,14 +30,16 @@ void StreamMonitor::note(const FaultReport& r) noexcept {
     const std::uint32_t fresh = r.devices[j].flags & ~reported_[j] &
                                 (fault::kEmcy | fault::kStateMismatch | fault::kBootFailed | fault::kTimeout |
                                  fault::kHeartbeatLost | fault::kDeviceFault | fault::kRecovering);
-    if (fresh != 0u && event_count_ < events_.size()) events_[event_count_++] = Event{cycle_, j, r.devices[j]};
+    if (fresh != 0u && event_count_ < events_.size())
+      events_[event_count_++] = Event{cycle_, j, r.devices[j]};
     reported_[j] |= fresh;
   }
 }
 
 void StreamMonitor::check(long k, TimeNs since_start, const FaultReport& r, const ArmDriver& arm) noexcept {
   constexpr std::uint32_t kHard = fault::kFeedbackMissing | fault::kDeviceFault | fault::kBootFailed |
-                                  fault::kTimeout | fault::kHeartbeatLost | fault::kStateMismatch | fault::kBusOff;
+                                  fault::kTimeout | fault::kHeartbeatLost | fault::kStateMismatch |
+                                  fault::kBusOff;
   std::uint32_t cycle_fail = 0;
   for (std::size_t j = 0; j < sent_.size(); ++j) {
     const DeviceFaults& df = r.devices[j];
@@ -73,9 +75,10 @@ void StreamMonitor::printEvents() const {
 }
 
 void StreamMonitor::printPhases() const {
-  std::printf("mrqp-stream: phases: read_mean_us=%.1f read_max_us=%.1f write_mean_us=%.1f write_max_us=%.1f\n",
-              phases_.mean(kRead) / 1e3, static_cast<double>(phases_.max(kRead)) / 1e3, phases_.mean(kWrite) / 1e3,
-              static_cast<double>(phases_.max(kWrite)) / 1e3);
+  std::printf(
+      "mrqp-stream: phases: read_mean_us=%.1f read_max_us=%.1f write_mean_us=%.1f write_max_us=%.1f\n",
+      phases_.mean(kRead) / 1e3, static_cast<double>(phases_.max(kRead)) / 1e3, phases_.mean(kWrite) / 1e3,
+      static_cast<double>(phases_.max(kWrite)) / 1e3);
 }
 
 void StreamMonitor::printDrives(const ArmConfig& cfg, const std::vector<DeviceFaults>& faults) const {
@@ -86,14 +89,15 @@ void StreamMonitor::printDrives(const ArmConfig& cfg, const std::vector<DeviceFa
         "heartbeat_lost_cycles=%llu heartbeat_lost_at_ms=%.1f tolerated_aborts=%u recoveries=%u nmt=%s\n",
         cfg.drives[j].node, max_err_[j], df.emcy_count, df.emcy_code, df.corrupt_frames,
         static_cast<unsigned long long>(hb_lost_[j]),
-        hb_lost_at_[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at_[j]) / 1e6, df.tolerated_aborts, df.recoveries,
-        nmtStateStr(df.nmt_state));
+        hb_lost_at_[j] < 0 ? -1.0 : static_cast<double>(hb_lost_at_[j]) / 1e6, df.tolerated_aborts,
+        df.recoveries, nmtStateStr(df.nmt_state));
   }
 }
 
 void StreamMonitor::printHeartbeatLoss(std::size_t j, int node, int timeout_ms) const {
-  std::printf("mrqp-stream: heartbeat loss of node %d detected at %.1f ms of streaming, wall %.6f, timeout %d ms\n",
-              node, static_cast<double>(hb_lost_at_[j]) / 1e6, hb_lost_wall_[j], timeout_ms);
+  std::printf(
+      "mrqp-stream: heartbeat loss of node %d detected at %.1f ms of streaming, wall %.6f, timeout %d ms\n",
+      node, static_cast<double>(hb_lost_at_[j]) / 1e6, hb_lost_wall_[j], timeout_ms);
 }
 
 }  // namespace mrqp::stream

@@ -23,7 +23,8 @@ class StreamMonitor {
   void note(const drivers::FaultReport& r) noexcept;
   /// Checks one streaming cycle `k` (after the arm driver's update): heartbeat loss, hard faults,
   /// the tracking error against what was sent the cycle before; `since_start` times the loss.
-  void check(long k, drivers::TimeNs since_start, const drivers::FaultReport& r, const drivers::ArmDriver& arm) noexcept;
+  void check(long k, drivers::TimeNs since_start, const drivers::FaultReport& r,
+             const drivers::ArmDriver& arm) noexcept;
   /// The position sent to drive j this cycle.
   void sent(std::size_t j, double q) noexcept { sent_[j] = q; }
   /// The cycle's phases: read (poll + update), then write (setpoints + transmit), timed by laps.

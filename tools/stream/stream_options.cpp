@@ -61,19 +61,35 @@ int parseOptions(int argc, char** argv, Options* po) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--quiet" || a == "--realtime" || a == "--recover" || a == "--tpdo-rtr-allowed") {
-      (a == "--quiet" ? o.quiet : a == "--realtime" ? o.realtime : a == "--recover" ? o.recover : o.tpdo_rtr_allowed) =
-          true;
+      (a == "--quiet"      ? o.quiet
+       : a == "--realtime" ? o.realtime
+       : a == "--recover"  ? o.recover
+                           : o.tpdo_rtr_allowed) = true;
       continue;
     }
     if (a == "--help" || a == "-h") {
       usage();
       return 0;
     }
-    static const char* const kValued[] = {
-        "--interface", "--nodes", "--rate", "--cycles", "--config", "--amplitude", "--frequency", "--max-error",
-        "--expect-heartbeat-loss", "--sdo-timeout-ms", "--heartbeat-timeout-ms", "--heartbeat-ms",
-        "--feedback-missing-cycles", "--comm-cycle-us", "--device-type", "--vendor-id", "--product-code",
-        "--exit-stop", "--exit-nmt"};
+    static const char* const kValued[] = {"--interface",
+                                          "--nodes",
+                                          "--rate",
+                                          "--cycles",
+                                          "--config",
+                                          "--amplitude",
+                                          "--frequency",
+                                          "--max-error",
+                                          "--expect-heartbeat-loss",
+                                          "--sdo-timeout-ms",
+                                          "--heartbeat-timeout-ms",
+                                          "--heartbeat-ms",
+                                          "--feedback-missing-cycles",
+                                          "--comm-cycle-us",
+                                          "--device-type",
+                                          "--vendor-id",
+                                          "--product-code",
+                                          "--exit-stop",
+                                          "--exit-nmt"};
     if (std::none_of(std::begin(kValued), std::end(kValued), [&](const char* k) { return a == k; })) {
       std::fprintf(stderr, "mrqp-stream: unknown option %s\n", a.c_str());
       usage();
@@ -92,8 +108,10 @@ int parseOptions(int argc, char** argv, Options* po) {
         return 2;
       }
     } else if (a == "--rate" || a == "--amplitude" || a == "--frequency" || a == "--max-error") {
-      (a == "--rate" ? o.rate : a == "--amplitude" ? o.amplitude : a == "--frequency" ? o.frequency : o.max_error) =
-          std::atof(v.c_str());
+      (a == "--rate"        ? o.rate
+       : a == "--amplitude" ? o.amplitude
+       : a == "--frequency" ? o.frequency
+                            : o.max_error) = std::atof(v.c_str());
     } else if (a == "--cycles") {
       o.cycles = std::atol(v.c_str());
     } else if (a == "--config") {
@@ -116,7 +134,8 @@ int parseOptions(int argc, char** argv, Options* po) {
     } else if (a == "--device-type" || a == "--vendor-id" || a == "--product-code") {
       unsigned long u = 0;
       if (!parseU32(v, 0xFFFFFFFFul, &u)) {
-        std::fprintf(stderr, "mrqp-stream: %s: expected a 32-bit unsigned number (0x... for hex)\n", a.c_str());
+        std::fprintf(stderr, "mrqp-stream: %s: expected a 32-bit unsigned number (0x... for hex)\n",
+                     a.c_str());
         return 2;
       }
       (a == "--device-type" ? o.device_type : a == "--vendor-id" ? o.vendor_id : o.product_code) = u;
@@ -136,8 +155,8 @@ int parseOptions(int argc, char** argv, Options* po) {
                                           : ExitNmt::Unchanged;
     }
   }
-  if (!(o.rate > 0.0 && o.rate <= 10000.0) || o.cycles <= 0 || o.heartbeat_ms <= 0 || o.heartbeat_timeout_ms <= 0 ||
-      o.sdo_timeout_ms <= 0 || o.feedback_missing_cycles <= 0) {
+  if (!(o.rate > 0.0 && o.rate <= 10000.0) || o.cycles <= 0 || o.heartbeat_ms <= 0 ||
+      o.heartbeat_timeout_ms <= 0 || o.sdo_timeout_ms <= 0 || o.feedback_missing_cycles <= 0) {
     std::fprintf(stderr,
                  "mrqp-stream: --rate must be 0..10000 Hz; --cycles, heartbeat times, "
                  "--feedback-missing-cycles > 0\n");

@@ -16,10 +16,10 @@ struct Options {
   double rate = 250.0;
   long cycles = 2000;
   std::string yaml;
-  double amplitude = 0.2;             ///< rad
-  double frequency = 0.5;             ///< Hz
-  double max_error = 0.1;             ///< rad, tracking error bound
-  int expect_heartbeat_loss = 0;      ///< node whose heartbeat loss is expected (and required)
+  double amplitude = 0.2;         ///< rad
+  double frequency = 0.5;         ///< Hz
+  double max_error = 0.1;         ///< rad, tracking error bound
+  int expect_heartbeat_loss = 0;  ///< node whose heartbeat loss is expected (and required)
   int heartbeat_timeout_ms = 250;
   int sdo_timeout_ms = 100;  ///< per SDO request during boot (a slow emulated target needs more)
   int heartbeat_ms = 100;
