@@ -62,11 +62,14 @@ TEST_CASE("collision: the shipped scenes stop at δs through the controller loop
   struct Case {
     const char* file;
     const char* constraint;
-    double gap;  // accepted distance below δs on the plant
+    double gap;  // accepted distance below δs, on the plant and on the controller's state
   };
-  // self_collision: as in-process to a few µm. two_arms: the arms' drive feedback re-bases the
-  // estimate's velocity each robot cycle on the CSP drives' velocity, derived from two successive
-  // quantised targets (docs/collision.md, "Through the controller loop"): 0.185 mm measured.
+  // self_collision: a few µm (the plant sits at the drives' targets, rounded to whole encoder
+  // increments: measured 6.0 µm below δs). two_arms: 0.18 mm measured below δs, on the plant and
+  // on the controller's state alike: the estimate's velocity correction compares the CSP drives'
+  // velocity, derived from two successive rounded targets, with one derived from the unrounded
+  // positions, and feeds the rounding (up to 3 mrad/s per joint) into the state each robot cycle
+  // (docs/collision.md, "Through the controller loop"); 0.25 mm accepted.
   for (const Case& k : {Case{"two_arms.yaml", "arms", 2.5e-4}, Case{"self_collision.yaml", "hand_torso", 2e-5}}) {
     INFO(k.file);
     const LoopRun r = runScene(k.file, k.constraint);
@@ -75,6 +78,7 @@ TEST_CASE("collision: the shipped scenes stop at δs through the controller loop
                 << (r.true_min - r.security) * 1e6 << " µm from δs), on the controller's estimate "
                 << r.estimate_min << " m");
     CHECK(r.true_min >= r.security - k.gap);
+    CHECK(r.estimate_min >= r.security - k.gap);
     CHECK(r.true_min <= r.security + 0.01);  // the bodies came close: the constraint stopped them
   }
 }
