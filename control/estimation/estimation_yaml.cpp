@@ -203,11 +203,6 @@ EntityEstimationSpec readEntity(const Reader& r, const YAML::Node& n, const std:
   e.process_noise = m.number("process_noise", Bound::NonNegative, e.process_noise);
   e.min_mass = m.number("min_mass", Bound::Positive, e.min_mass);
   e.feed_back = m.boolean("feed_back", false);
-  if (e.feed_back && e.estimate != BodyEstimate::None) {
-    r.fail(m.require("feed_back"), m.at("feed_back"),
-           "this build writes back spring parameters only (a rigid object's inertia in the QP's model is "
-           "fixed)");
-  }
   e.force_noise = plantNoise(r, doc, "force");
   e.torque_noise = plantNoise(r, doc, "torque");
   return e;

@@ -1,12 +1,12 @@
 // Online inertial-parameter estimation on the controller's cycle (see estimator_hook.hpp).
 #include "estimation/estimator_hook.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-
-#include "problem/rigid_object.hpp"
 
 namespace mrqp::estimation {
 
@@ -81,9 +81,11 @@ EstimatorHook::EstimatorHook(loop::Controller& controller, const EstimationSpec&
       config.body_bounds.push_back(bounds);
     }
     if (es.estimate != BodyEstimate::None) {
-      const auto* obj = dynamic_cast<const problem::RigidObject*>(&e);
+      auto* obj = dynamic_cast<problem::RigidObject*>(&e);
       if (obj == nullptr)
         throw std::invalid_argument(what + "link parameters are estimated for rigid objects only");
+      s.object = obj;
+      s.object_Ic = obj->inertiaAboutCom();
       config.bodies[0] = es.estimate;
       config.body_prior[0] = rigidPrior(es.initial_mass, es.initial_com, obj->inertiaAboutCom());
       InertialVector sd = InertialVector::Constant(0.1);
@@ -115,12 +117,27 @@ EstimatorHook::EstimatorHook(loop::Controller& controller, const EstimationSpec&
       R += s.J.transpose() * var.asDiagonal() * s.J;
     }
     config.observation_covariance = R;
+    const Eigen::LLT<Eigen::MatrixXd> llt(R);
+    if (llt.info() != Eigen::Success) throw std::invalid_argument(what + "R is not positive definite");
+    s.L = llt.matrixL();
     config.process_noise_ratio = es.process_noise;
     s.est = std::make_unique<InertialEstimator>(model, config);
     s.sd = Eigen::VectorXd::Zero(s.est->parameters().size());
     s.BP = Eigen::MatrixXd::Zero(s.est->basis().rows(), s.est->basis().cols());
     updateDeviations(s);
     if (es.feed_back) feedBack(p, s);
+    const Eigen::Index np = s.est->filter().estimate().size();
+    s.Yw = Eigen::MatrixXd::Zero(nv, np);
+    s.muw = Eigen::VectorXd::Zero(nv);
+    static const char* const kBodyNames[10] = {"m", "hx", "hy", "hz", "Ixx", "Ixy", "Iyy", "Ixz", "Iyz", "Izz"};
+    const int body_count = es.estimate == BodyEstimate::Mass ? 1 : es.estimate == BodyEstimate::MassCom ? 4
+                         : es.estimate == BodyEstimate::Full  ? 10 : 0;
+    for (int k = 0; k < body_count; ++k) s.state_names.emplace_back(kBodyNames[k]);
+    for (const EstimatedSpringSpec& sp : es.springs) {
+      for (const char* c : {"_K", "_C", "_O"}) s.state_names.push_back(sp.joint + c);
+    }
+    if (static_cast<Eigen::Index>(s.state_names.size()) != np)
+      throw std::invalid_argument(what + "the filter's state does not match the section");
 
     // Log columns.
     s.value_offset = static_cast<int>(columns_.size());
@@ -136,6 +153,15 @@ EstimatorHook::EstimatorHook(loop::Controller& controller, const EstimationSpec&
     }
     columns_.push_back(base + "_nis");
     columns_.push_back(base + "_updates");
+    for (const std::string& n : s.state_names) columns_.push_back(base + "_theta_" + n);
+    for (const std::string& n : s.state_names) columns_.push_back(base + "_theta_std_" + n);
+    columns_.push_back(base + "_accepted");
+    if (s.object != nullptr) columns_.push_back(base + "_model_mass");  // the QP's model (feed_back)
+    for (int r = 0; r < nv; ++r) {
+      const std::string row = base + "_row" + std::to_string(r) + "_";
+      for (const std::string& n : s.state_names) columns_.push_back(row + n);
+      columns_.push_back(row + "mu");
+    }
   }
   values_.assign(columns_.size(), kNaN);
   for (auto& s : slots_) writeValues(*s);
@@ -156,6 +182,17 @@ void EstimatorHook::updateDeviations(Slot& s) noexcept {
 void EstimatorHook::feedBack(problem::MultiRobotProblem& p, Slot& s) noexcept {
   problem::Entity& e = p.entity(s.spec.entity);
   const Eigen::VectorXd& phi = s.est->parameters();
+  // A rigid object's (projected, physically consistent) parameters: the QP plans with them. With
+  // mass or mass_com the inertia about the CoM is the scene's (what the filter does not estimate;
+  // its state keeps the inertia about the origin instead, which a moving CoM would shrink about the
+  // CoM); with full, all ten. An estimate the object refuses (an inertia about the CoM not positive
+  // definite) leaves the model at the last one it took.
+  if (s.object != nullptr) {
+    const bool ok = s.spec.estimate == BodyEstimate::Full
+                        ? s.object->setInertialParameters(phi.head<10>())
+                        : s.object->setInertia(phi(0), phi.segment<3>(1) / phi(0), s.object_Ic);
+    if (!ok) ++s.feed_back_refused;
+  }
   const Eigen::Index first = phi.size() - 3 * static_cast<Eigen::Index>(s.spec.springs.size());
   for (std::size_t k = 0; k < s.spec.springs.size(); ++k) {
     const Eigen::Index at = first + 3 * static_cast<Eigen::Index>(k);
@@ -229,6 +266,11 @@ void EstimatorHook::robotCycle(loop::Controller& c, Slot& s) noexcept {
   if (s.since < s.spec.settle_s) return;
   if (s.est->update(s.q_use, s.v_f.value(), s.v_f.derivative(), s.mu_f.value())) {
     ++s.updates;
+    s.accepted_now = true;
+    s.Yw = s.est->lastRegressor();
+    s.muw = s.est->lastObservation();
+    s.L.triangularView<Eigen::Lower>().solveInPlace(s.Yw);
+    s.L.triangularView<Eigen::Lower>().solveInPlace(s.muw);
     updateDeviations(s);
     if (s.spec.feed_back) feedBack(c.problem(), s);
   }
@@ -253,7 +295,18 @@ void EstimatorHook::writeValues(Slot& s) noexcept {
     }
   }
   *out++ = s.est->filter().lastNis();
-  *out = static_cast<double>(s.updates);
+  *out++ = static_cast<double>(s.updates);
+  const Eigen::VectorXd& theta = s.est->filter().estimate();
+  const Eigen::MatrixXd& P = s.est->filter().covariance();
+  for (Eigen::Index k = 0; k < theta.size(); ++k) *out++ = theta(k);
+  for (Eigen::Index k = 0; k < theta.size(); ++k) *out++ = std::sqrt(std::max(0.0, P(k, k)));
+  *out++ = s.accepted_now ? 1.0 : 0.0;
+  s.accepted_now = false;
+  if (s.object != nullptr) *out++ = s.object->mass();
+  for (Eigen::Index r = 0; r < s.Yw.rows(); ++r) {
+    for (Eigen::Index k = 0; k < s.Yw.cols(); ++k) *out++ = s.Yw(r, k);
+    *out++ = s.muw(r);
+  }
 }
 
 void EstimatorHook::onCycle(loop::Controller& c, drivers::TimeNs) noexcept {

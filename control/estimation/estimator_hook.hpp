@@ -14,7 +14,9 @@
 //   - after the filter has settled, steps the InertialEstimator with (q, q̇, q̈, μ) filtered;
 //   - with feed_back, writes the estimated springs (K, C, O) into the QP's model of the entity.
 // It holds (no update) while a hand's sample is stale, a value is not finite, or the controller
-// has stopped. The log gets, per entity, each estimated quantity and its standard deviation.
+// has stopped. The log gets, per entity, each estimated quantity and its standard deviation, the
+// filter's state θ and its deviations, and the whitened regression rows of the last update (what
+// the batch estimate of tools/irls needs).
 //
 // Set-up (the constructor) allocates and throws; onCycle is noexcept and allocation-free.
 #pragma once
@@ -30,6 +32,7 @@
 #include "estimation/regressor_factory.hpp"
 #include "estimation/state_variable_filter.hpp"
 #include "loop/controller.hpp"
+#include "problem/rigid_object.hpp"
 
 namespace mrqp::estimation {
 
@@ -45,6 +48,8 @@ class EstimatorHook final : public loop::CycleHook {
   const InertialEstimator& estimator(int i) const noexcept { return *slot(i).est; }
   /// Filter updates done (accepted) for entity i.
   long updates(int i) const noexcept { return slot(i).updates; }
+  /// Estimates of a rigid object's parameters that the QP's model refused (feed_back).
+  long feedBackRefused(int i) const noexcept { return slot(i).feed_back_refused; }
   /// The last μ (filtered) of entity i.
   const Eigen::VectorXd& lastObservation(int i) const noexcept { return slot(i).mu_f.value(); }
   /// The last filtered velocity and acceleration of entity i.
@@ -59,6 +64,8 @@ class EstimatorHook final : public loop::CycleHook {
   Eigen::Vector3d spring(int i, int s) const noexcept;
   Eigen::Vector3d springStd(int i, int s) const noexcept;
 
+  /// The names of the filter's state θ of entity i (m, hx, hy, hz, Ixx, …; JOINT_K, …).
+  const std::vector<std::string>& stateNames(int i) const noexcept { return slot(i).state_names; }
   /// The log's columns of this hook (names) and the values of the last cycle, in that order.
   const std::vector<std::string>& logColumns() const noexcept { return columns_; }
   const double* logValues() const noexcept { return values_.data(); }
@@ -74,9 +81,18 @@ class EstimatorHook final : public loop::CycleHook {
     Eigen::MatrixXd J;
     Eigen::VectorXd sd;  // standard deviations of the full φ (updated after each update)
     Eigen::MatrixXd BP;  // basis × P (workspace of sd)
+    // The last accepted update's regression, whitened by R = L Lᵀ (L⁻¹ Y_θ, L⁻¹ μ_θ): logged
+    // for the batch estimate over a run (mrqp-irls).
+    Eigen::MatrixXd L, Yw;
+    Eigen::VectorXd muw;
+    bool accepted_now = false;
     double period = 0.0, since = 0.0;
     long updates = 0;
+    long feed_back_refused = 0;           // estimates the QP's model refused (not consistent)
+    problem::RigidObject* object = nullptr;  // the entity, when it is a rigid object
+    Eigen::Matrix3d object_Ic = Eigen::Matrix3d::Identity();  // its scene inertia about the CoM
     int value_offset = 0;  // first of this entity's values in values_
+    std::vector<std::string> state_names;
   };
   Slot& slot(int i) noexcept { return *slots_[static_cast<std::size_t>(i)]; }
   const Slot& slot(int i) const noexcept { return *slots_[static_cast<std::size_t>(i)]; }

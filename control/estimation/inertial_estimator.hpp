@@ -69,6 +69,10 @@ class InertialEstimator {
   /// φ = offset + basis θ: how the filter's state θ maps to the full vector.
   const Eigen::MatrixXd& basis() const noexcept { return basis_; }
   const ParameterKalman& filter() const noexcept { return kalman_; }
+  /// The regression of the last accepted update in the filter's own coordinates θ:
+  /// lastObservation() = lastRegressor() θ + v, i.e. (Y basis, μ − Y offset). For the batch tool.
+  const Eigen::MatrixXd& lastRegressor() const noexcept { return Ysel_; }
+  const Eigen::VectorXd& lastObservation() const noexcept { return mu_adj_; }
   int rejectedUpdates() const noexcept { return rejected_; }
   /// Updates after which the reported parameters differ from the filter's (a projection acted).
   int projections() const noexcept { return projections_; }

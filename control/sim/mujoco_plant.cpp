@@ -45,7 +45,7 @@ void silentWarning(const char* /*message*/) {}
 
 MujocoPlant::MujocoPlant(const scene::SceneSpec& scene, const PlantSpec& plant,
                          const scene::ModelRegistry* registry)
-    : drives_(plant.drives) {
+    : drives_(plant.drives), ft_noise_(plant.noise, plant.seed) {
   mju_user_warning = silentWarning;
   mjcf_ = writeMjcf(scene, plant);
   load(mjcf_.xml);
@@ -477,7 +477,7 @@ loop::Vector6d MujocoPlant::sensorWrench(int frame) const noexcept {
   loop::Vector6d out;
   out.head<3>() = R.transpose() * force;
   out.tail<3>() = R.transpose() * torque_o;
-  return out;
+  return ft_noise_.wrench(out);
 }
 
 loop::ImuSample MujocoPlant::imu(int frame) const noexcept {

@@ -35,6 +35,7 @@
 #include "scene/scene_spec.hpp"
 #include "sim/mjcf_writer.hpp"
 #include "sim/plant_spec.hpp"
+#include "sim/sensor_noise.hpp"
 
 namespace mrqp::sim {
 
@@ -137,6 +138,8 @@ class MujocoPlant final : public loop::Plant {
   std::vector<Mimic> mimics_;
   std::vector<int> sensor_body_;  // per body: the body whose subtree a sensor there measures
   DriveSpec drives_;
+  /// The plant section's F/T noise and bias, applied to every sensorWrench (seeded: deterministic).
+  mutable SensorNoise ft_noise_;
 };
 
 }  // namespace mrqp::sim

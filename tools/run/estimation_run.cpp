@@ -122,6 +122,8 @@ void EstimationRun::printSummary() const {
     if (e.estimate != estimation::BodyEstimate::None) {
       std::printf("    mass %.4g kg ± %.2g (2σ), true %.4g kg; CoM error %.3g m\n", hook_->mass(i),
                   2.0 * hook_->massStd(i), e.true_mass, (hook_->com(i) - e.true_com).norm());
+      if (e.feed_back)
+        std::printf("    fed back into the QP's model; estimates it refused: %ld\n", hook_->feedBackRefused(i));
     }
     for (std::size_t k = 0; k < e.springs.size(); ++k) {
       const Eigen::Vector3d s = hook_->spring(i, static_cast<int>(k));
