@@ -20,7 +20,8 @@ press (force_press): the direct hand reaches a torque limit (torque_limit_hits >
 
 A failed outcome is reported as a skip (exit 77, with the reason) only while a prerequisite is
 missing, measured here (prerequisite_missing): for press, the prerequisite scene (jvrc1_box)
-stops safely on the MuJoCo plant (JVRC-1 does not run there); for both, the same scene with
+stops safely on the MuJoCo plant (JVRC-1 does not run there), or the scene stops safely on the
+ideal plant (the controller cannot run it, whatever the plant); for both, the same scene with
 --no-force-control stops safely or has drives at their torque limits (the world fights the
 controller before any admittance acts).
 """
@@ -102,6 +103,16 @@ def prerequisite_missing(program, scene, out_dir, kind, prerequisite):
             return None
         if s["safe_stop"] is not None:
             return f"{os.path.basename(prerequisite)} stops on the MuJoCo plant ({s['safe_stop']})"
+    if kind == "press":
+        # The controller itself must run the press: on the ideal plant (no physics but the model's;
+        # its F/T sensors read zero, so the direct hand searches downwards) the scene must not
+        # stop safely either.
+        r = mrqp_run.run(program, scene, out_dir + "_ideal", plant="ideal")
+        if r.summary is None:
+            print(f"the ideal plant's run failed: {r.stderr.strip()}")
+            return None
+        if r.summary["safe_stop"] is not None:
+            return f"the scene stops on the ideal plant too ({r.summary['safe_stop']})"
     q, s = run(program, scene, out_dir + "_without", ["--no-force-control"])
     if s is None:
         print(f"the run without force control failed: {q.stderr.strip()}")
