@@ -49,14 +49,6 @@ inline void forceToParent(const double* E, const double* r, const double* f, dou
   out[5] += ef[2];
 }
 
-/// World pose of a child: R = Rp Rl, p = pp + Rp pl.
-inline void composePose(const double* Rp, const double* pp, const double* Rl, const double* pl, double* R,
-                        double* p) noexcept {
-  for (int j = 0; j < 3; ++j) rotate(Rp, Rl + 3 * j, R + 3 * j);
-  rotate(Rp, pl, p);
-  for (int i = 0; i < 3; ++i) p[i] += pp[i];
-}
-
 /// Body wrench I a + v ×* I v as a linear map of φ = (m, h, Ixx, Ixy, Iyy, Ixz, Iyz, Izz):
 /// A is 6×10, row-major.
 inline void bodyRegressor(const double* v, const double* a, double A[6][10]) noexcept {

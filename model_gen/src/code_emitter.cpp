@@ -343,7 +343,7 @@ void Emitter::emitLocalTransforms(std::ostream& o) const {
     o << "  }\n";
   }
   o << "}\n\n";
-  // World poses R = Rp Rl, p = Rp pl + pp (composePose's sums, in its order, without the terms
+  // World poses R = Rp Rl, p = Rp pl + pp (rotate()'s sums, in its order, without the terms
   // whose Rl or pl entry is exactly 0 and with the factors exactly ±1 folded: bit-identical).
   o << "inline void worldPoses(Data& d) noexcept {\n  d.R[0] = d.Rl[0];\n  d.p[0] = d.pl[0];\n";
   auto product = [](const std::array<std::string, 3>& x, const std::array<std::string, 3>& xText) {

@@ -77,17 +77,6 @@ TEST_CASE("model kernels: motion and force transforms keep power invariant", "[m
   }
 }
 
-TEST_CASE("model kernels: pose composition equals Eigen's", "[model_gen][kernels]") {
-  Rng rng;
-  const Matrix3d Rp = rng.rotation(), Rl = rng.rotation();
-  const Vector3d pp = rng.vec3(), pl = rng.vec3();
-  Matrix3d R;
-  Vector3d p;
-  composePose(Rp.data(), pp.data(), Rl.data(), pl.data(), R.data(), p.data());
-  CHECK((R - Rp * Rl).norm() < 1e-15);
-  CHECK((p - (pp + Rp * pl)).norm() < 1e-15);
-}
-
 TEST_CASE("model kernels: the body regressor times the parameters is I a + v x* I v",
           "[model_gen][kernels]") {
   Rng rng;
