@@ -9,7 +9,7 @@ include_guard(GLOBAL)
 # Errors everywhere but in the fuzz preset (tests/fuzz), which compiles the tree with clang: there
 # the same warnings are reported, but a warning only clang gives (an unused inline function of the
 # generated code) does not stop the fuzzing; the GCC builds keep them errors.
-option(MRQP_WARNINGS_AS_ERRORS "Compile with -Werror (OFF only in the clang fuzz build)" ON)
+option(MRQP_WARNINGS_AS_ERRORS "Compile with -Werror (every preset does; OFF to see all warnings of a new compiler at once)" ON)
 set(MRQP_WARNINGS
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion
   $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>

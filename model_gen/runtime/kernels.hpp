@@ -1,8 +1,9 @@
 // Scalar kernels of every generated model (mrqp-gen copies the text after the marker line into
 // the anonymous namespace of each generated .cpp): 3-vectors and rotations on raw pointers,
-// spatial motion and force transforms (Featherstone), pose composition, the body regressor of the
-// inertial parameters. Plain scalar code rather than Eigen expressions: Eigen's product templates
-// cost seconds of compile time per instantiation set, and every generated model would pay them.
+// spatial motion and force transforms (Featherstone), the body regressor of the inertial
+// parameters; each marked [[maybe_unused]], since a model uses only the ones its tree needs.
+// Plain scalar code rather than Eigen expressions: Eigen's product templates cost seconds of
+// compile time per instantiation set, and every generated model would pay them.
 // Compiled and tested on its own by tests/model_gen/test_runtime_kernels.cpp.
 #pragma once
 
@@ -10,26 +11,27 @@
 
 // ---- mrqp-gen: the text below is copied into every generated model ----
 /// The std::array position of a body or frame index (an int, >= 0 where it is used).
-inline constexpr std::size_t ix(int i) noexcept { return static_cast<std::size_t>(i); }
+[[maybe_unused]] inline constexpr std::size_t ix(int i) noexcept { return static_cast<std::size_t>(i); }
 
 /// out = R x (R column-major).
-inline void rotate(const double* R, const double* x, double* out) noexcept {
+[[maybe_unused]] inline void rotate(const double* R, const double* x, double* out) noexcept {
   for (int i = 0; i < 3; ++i) out[i] = R[i] * x[0] + R[i + 3] * x[1] + R[i + 6] * x[2];
 }
 
 /// out = Rᵀ x.
-inline void rotateT(const double* R, const double* x, double* out) noexcept {
+[[maybe_unused]] inline void rotateT(const double* R, const double* x, double* out) noexcept {
   for (int i = 0; i < 3; ++i) out[i] = R[3 * i] * x[0] + R[3 * i + 1] * x[1] + R[3 * i + 2] * x[2];
 }
 
-inline void cross(const double* a, const double* b, double* out) noexcept {
+[[maybe_unused]] inline void cross(const double* a, const double* b, double* out) noexcept {
   out[0] = a[1] * b[2] - a[2] * b[1];
   out[1] = a[2] * b[0] - a[0] * b[2];
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
 /// out = X m: a parent motion in child coordinates, (Eᵀ ω, Eᵀ (v + ω × r)).
-inline void motionToChild(const double* E, const double* r, const double* m, double* out) noexcept {
+[[maybe_unused]] inline void motionToChild(const double* E, const double* r, const double* m,
+                                           double* out) noexcept {
   const double l[3] = {m[3] + m[1] * r[2] - m[2] * r[1], m[4] + m[2] * r[0] - m[0] * r[2],
                        m[5] + m[0] * r[1] - m[1] * r[0]};
   rotateT(E, m, out);
@@ -37,7 +39,8 @@ inline void motionToChild(const double* E, const double* r, const double* m, dou
 }
 
 /// out += X* f: a child wrench in parent coordinates, (E n + r × E f, E f).
-inline void forceToParent(const double* E, const double* r, const double* f, double* out) noexcept {
+[[maybe_unused]] inline void forceToParent(const double* E, const double* r, const double* f,
+                                           double* out) noexcept {
   double en[3], ef[3];
   rotate(E, f, en);
   rotate(E, f + 3, ef);
@@ -51,7 +54,7 @@ inline void forceToParent(const double* E, const double* r, const double* f, dou
 
 /// Body wrench I a + v ×* I v as a linear map of φ = (m, h, Ixx, Ixy, Iyy, Ixz, Iyz, Izz):
 /// A is 6×10, row-major.
-inline void bodyRegressor(const double* v, const double* a, double A[6][10]) noexcept {
+[[maybe_unused]] inline void bodyRegressor(const double* v, const double* a, double A[6][10]) noexcept {
   const double* w = v;
   const double* vl = v + 3;
   const double* al = a;      // angular acceleration
