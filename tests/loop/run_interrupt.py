@@ -5,8 +5,8 @@ get the safe exit as after a last cycle, and summary.json reports the cycles run
 
 Usage: run_interrupt.py MRQP_RUN SCENE OUT_DIR
 panda_door runs paced (wall clock) for up to 30 s; the signal comes 1.5 s after the devices are
-ready. Checks: exit status 0, the "interrupted" line, summary.json's cycles fewer than planned and
-more than the cycles of 1 s, the safe exit done, no allocation in the loop, no safe stop.
+ready. Checks: exit status 0, the "interrupted" line, summary.json's cycles (those of the loop after
+the boot) more than none and fewer than planned, the safe exit done, no allocation in the loop, no safe stop.
 """
 import os
 import signal
@@ -53,7 +53,10 @@ def run_once(run, scene, out, sig):
     if s is None:
         return failures + ["no summary.json"]
     planned = round(30.0 / s["period_s"])
-    if not (round(1.0 / s["period_s"]) < s["cycles"] < planned):
+    # The loop ran (cycles after the boot) and ended before its end. No lower bound from the 1.5 s
+    # of wall clock: the deadline clock skips the periods a stalled process misses, so a loaded
+    # machine runs fewer cycles in that time (969 seen after one 10 ms stall and 126 misses).
+    if not (0 < s["cycles"] < planned):
         failures.append(f"cycles {s['cycles']} (planned {planned})")
     if not s["safe_exit"]["done"]:
         failures.append(f"safe exit: {s['safe_exit']!r}")
