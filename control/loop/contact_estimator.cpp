@@ -131,8 +131,8 @@ void ContactEstimator::dropFree(int c, Target& t, int i) const noexcept {
   const Eigen::Matrix3d Rc = p_.entity(d.entity).framePose(d.frame).R * problem::contactFrame(d.normal);
   Eigen::Matrix3d P_lin = Eigen::Matrix3d::Identity(), P_ang = Eigen::Matrix3d::Identity();
   for (int k = 0; k < 3; ++k) {
-    if ((d.free >> k) & 1u) P_lin -= Rc.col(k) * Rc.col(k).transpose();
-    if ((d.free >> (k + 3)) & 1u) P_ang -= Rc.col(k) * Rc.col(k).transpose();
+    if (d.frees(k)) P_lin -= Rc.col(k) * Rc.col(k).transpose();
+    if (d.frees(k + 3)) P_ang -= Rc.col(k) * Rc.col(k).transpose();
   }
   t.b.segment<3>(6 * i) = P_ang * t.b.segment<3>(6 * i);
   t.b.segment<3>(6 * i + 3) = P_lin * t.b.segment<3>(6 * i + 3);

@@ -30,10 +30,10 @@ enum ContactDirection : std::uint8_t {
   kAboutT2 = 1u << 4,
   kAboutNormal = 1u << 5,
 };
-inline constexpr std::uint8_t kFreeNormal = kAlongNormal;                 ///< slide along n
-inline constexpr std::uint8_t kFreeTangent = kAlongT1 | kAlongT2;         ///< slide in the plane
-inline constexpr std::uint8_t kFreeTwist = kAboutNormal;                  ///< turn about n
-inline constexpr std::uint8_t kFreeTilt = kAboutT1 | kAboutT2;            ///< tilt off the plane
+inline constexpr std::uint8_t kFreeNormal = kAlongNormal;          ///< slide along n
+inline constexpr std::uint8_t kFreeTangent = kAlongT1 | kAlongT2;  ///< slide in the plane
+inline constexpr std::uint8_t kFreeTwist = kAboutNormal;           ///< turn about n
+inline constexpr std::uint8_t kFreeTilt = kAboutT1 | kAboutT2;     ///< tilt off the plane
 inline constexpr std::uint8_t kFreeRotations = kAboutT1 | kAboutT2 | kAboutNormal;
 inline constexpr std::uint8_t kFreeAll = 0x3f;
 
@@ -59,6 +59,9 @@ struct ContactDesc {
   std::uint8_t held() const noexcept {
     return static_cast<std::uint8_t>((npoints == 1 ? 0x07 : 0x3f) & ~free);
   }
+  /// Whether direction k (ContactDirection bit index 0…5) is held / left free.
+  bool holds(int k) const noexcept { return ((held() >> k) & 1) != 0; }
+  bool frees(int k) const noexcept { return ((free >> k) & 1) != 0; }
   /// Rows of the no-slip constraint: one per held direction (3 for a point contact, 6 for a
   /// surface, when nothing is free).
   int rows() const noexcept {

@@ -496,10 +496,10 @@ void MultiRobotProblem::assembleContacts() noexcept {
       const Eigen::Matrix3d Rc = sf.R * contactFrame(c.d.normal);
       Vector6d rhs_c;
       rhs_c.head<3>() = Rc.transpose() * rhs.tail<3>();  // translations
-      rhs_c.tail<3>() = Rc.transpose() * rhs.head<3>();   // rotations
+      rhs_c.tail<3>() = Rc.transpose() * rhs.head<3>();  // rotations
       int r = 0;
       for (int k = 0; k < 6; ++k) {
-        if ((c.d.held() >> k) & 1u) b(c.row_offset + r++) = rhs_c(k);
+        if (c.d.holds(k)) b(c.row_offset + r++) = rhs_c(k);
       }
     } else if (c.rows == 6) {
       A.block(c.row_offset, oa, 6, na) = Ja;
@@ -517,10 +517,9 @@ void MultiRobotProblem::writeHeldRows(const ContactSlot& c, const Eigen::Matrix3
   // Held direction k of the contact frame (t1, t2, n; translations then rotations): the row
   // sign · dᵀ J_lin (translation along d) or sign · dᵀ J_ang (rotation about d), d in world axes.
   const Eigen::Matrix3d Rc = R_frame * contactFrame(c.d.normal);
-  const std::uint8_t held = c.d.held();
   int r = 0;
   for (int k = 0; k < 6; ++k) {
-    if (((held >> k) & 1u) == 0) continue;
+    if (!c.d.holds(k)) continue;
     const Eigen::Vector3d d = sign * Rc.col(k % 3);
     rows.row(r++).noalias() = d.transpose() * (k < 3 ? J.bottomRows<3>() : J.topRows<3>());
   }
