@@ -38,6 +38,34 @@ Eigen::Vector3d vec3(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
 std::string where(const scene::Source& s) { return s.file + ":" + std::to_string(s.line) + ": "; }
 
+/// Whether `body` is `root` or one of its descendants.
+bool inSubtree(const mjModel* m, int body, int root) noexcept {
+  for (; body > 0; body = m->body_parentid[body]) {
+    if (body == root) return true;
+  }
+  return body == root;
+}
+
+/// The torque (world axes) that the rotational rows of weld `eq`, with constraint forces
+/// `f_rot` (efc_force of its rows 3–5), exert on the weld's body1. MuJoCo 2.2 writes the weld's
+/// orientation error as the vector part of c = q2⁻¹ q1 r (r: the weld's relative rotation,
+/// eq_data[6..9]) times the torque scale s, and its Jacobian rows as ½ s T (ω1 − ω2) with
+/// T ω = vec(q2⁻¹ (0, ω) q1 r) = (c_w 1 − [c_v]×) R2ᵀ ω, so the generalised force of the rows,
+/// Jᵀ f, is that of the torque ½ s R2 (c_w f + c_v × f) on body1 (and its opposite on body2).
+Eigen::Vector3d weldRotationalTorque(const mjModel* m, const mjData* d, int eq, const mjtNum* f_rot) noexcept {
+  const mjtNum* data = m->eq_data + mjNEQDATA * eq;
+  const int b1 = m->eq_obj1id[eq];
+  const int b2 = m->eq_obj2id[eq];
+  const mjtNum* x1 = d->xquat + 4 * b1;
+  const mjtNum* x2 = d->xquat + 4 * b2;
+  const Eigen::Quaterniond q1(x1[0], x1[1], x1[2], x1[3]);
+  const Eigen::Quaterniond q2(x2[0], x2[1], x2[2], x2[3]);
+  const Eigen::Quaterniond r(data[6], data[7], data[8], data[9]);
+  const Eigen::Quaterniond c = q2.conjugate() * q1 * r;
+  const Eigen::Vector3d f = vec3(f_rot);
+  return 0.5 * data[10] * (bodyRotation(d, b2) * (c.w() * f + c.vec().cross(f)));
+}
+
 /// MuJoCo warns through this hook instead of printing; the counts stay in mjData::warning.
 void silentWarning(const char* /*message*/) {}
 
@@ -469,7 +497,28 @@ loop::Vector6d MujocoPlant::sensorWrench(int frame) const noexcept {
   // equality constraints (the welds of grasps) in cfrc_ext, so cfrc_int includes what the
   // subtree carries through them.
   const Eigen::Vector3d c = vec3(data_->subtree_com + 3 * model_->body_rootid[b]);
-  const Eigen::Vector3d torque = -vec3(data_->cfrc_int + 6 * b);
+  Eigen::Vector3d torque = -vec3(data_->cfrc_int + 6 * b);
+  // MuJoCo 2.2's mj_rnePostConstraint adds a weld's rotational constraint force to cfrc_ext as a
+  // world torque, as it is: but those rows are written on half the rotation, in body2's axes,
+  // scaled by the torque scale and signed by the hemisphere in which the bodies' quaternions meet
+  // (weldRotationalTorque): the torque they transmit is ±½ of it, turned by body2's rotation
+  // (measured: cfrc_ext carried −2× and +2× the true weld torque). cfrc_int of a subtree that
+  // holds one end of a weld carries the difference: taken out here. (The weld's force rows and
+  // connects are exact.)
+  for (int i = 0; i < data_->ne;) {
+    const int eq = data_->efc_id[i];
+    const int type = model_->eq_type[eq];
+    if (type == mjEQ_WELD) {
+      const bool in1 = inSubtree(model_, model_->eq_obj1id[eq], b);
+      const bool in2 = inSubtree(model_, model_->eq_obj2id[eq], b);
+      if (in1 != in2) {
+        const mjtNum* f_rot = data_->efc_force + i + 3;
+        const Eigen::Vector3d excess = vec3(f_rot) - weldRotationalTorque(model_, data_, eq, f_rot);
+        torque -= in1 ? excess : Eigen::Vector3d(-excess);  // body1 got +excess in cfrc_ext, body2 −excess
+      }
+    }
+    i += type == mjEQ_WELD ? 6 : (type == mjEQ_CONNECT ? 3 : 1);
+  }
   const Eigen::Vector3d force = -vec3(data_->cfrc_int + 6 * b + 3);
   const Eigen::Vector3d o = vec3(data_->xpos + 3 * frame);
   const Eigen::Vector3d torque_o = torque + (c - o).cross(force);

@@ -17,7 +17,8 @@
 // linear velocity in the world frame: converted here). sensorWrench: the wrench the subtree of the
 // frame's body (and everything it grasps) exerts on its parent, moment about the frame origin, in
 // the frame's axes; a marker frame (a link that carries nothing: no mass, geometry or weld in its
-// subtree) measures across its nearest ancestor that carries something, as a wrist sensor does. imu: specific force (acceleration − gravity) and angular velocity in the
+// subtree) measures across its nearest ancestor that carries something, as a wrist sensor does
+// (a weld's torque taken as transmitted, not as MuJoCo 2.2's cfrc_ext counts it: mujoco_plant.cpp). imu: specific force (acceleration − gravity) and angular velocity in the
 // frame's axes.
 //
 // Real-time: step() and every query are noexcept and allocation-free (mj_step works in mjData's
