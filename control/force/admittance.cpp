@@ -17,18 +17,26 @@ const char* Admittance::check(const AdmittanceGains& g, double sample_hz) noexce
   if (!std::isfinite(g.cutoff_hz) || !(g.cutoff_hz > 0.0) || !(g.cutoff_hz < 0.5 * sample_hz)) {
     return "the cutoff must be > 0 and below half the robot's sample rate (Nyquist)";
   }
+  if (!std::isfinite(g.max_displacement) || !(g.max_displacement > 0.0))
+    return "the displacement bound must be a finite number > 0";
   return nullptr;
 }
 
 Admittance::Admittance(const AdmittanceGains& gains, double sample_hz) : gains_(gains) {
   if (const char* why = check(gains, sample_hz)) throw std::invalid_argument(why);
   filter_.design(gains.cutoff_hz, sample_hz);
+  constexpr double kPi = 3.14159265358979323846;
+  braking_time_ = 3.0 * (2.0 / (2.0 * kPi * gains.cutoff_hz) + 1.0 / sample_hz);
 }
 
-double Admittance::step(double f_target, double f_measured, bool sensor_ok) noexcept {
+double Admittance::step(double f_target, double f_measured, bool sensor_ok, double displacement) noexcept {
   const double v = gains_.gain * (f_target - f_measured);  // eq. 45 along n
-  holding_ = !sensor_ok || !std::isfinite(v);
-  clamped_ = holding_ ? 0.0 : std::min(std::max(gains_.v_min, v), gains_.v_max);  // eq. 46
+  holding_ = !sensor_ok || !std::isfinite(v) || !std::isfinite(displacement);
+  // eq. 46, narrowed near the displacement bound (continuous in the displacement: no jump).
+  const double d_max = gains_.max_displacement;
+  const double hi = std::min(gains_.v_max, std::max(0.0, (d_max - displacement) / braking_time_));
+  const double lo = std::max(gains_.v_min, std::min(0.0, (-d_max - displacement) / braking_time_));
+  clamped_ = holding_ ? 0.0 : std::min(std::max(lo, v), hi);
   filter_.filter(clamped_);
   // A hold decays towards zero for ever: end it exactly there (no denormals on the cycle).
   if (holding_ && filter_.quiet(1e-15)) filter_.reset(0.0);

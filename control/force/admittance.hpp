@@ -5,6 +5,13 @@
 //   v_c = min(max(v_min, v), v_max)                  eq. 46, a guarded motion
 //   ṽ  = Butterworth₃(v_c)                           3rd order, cutoff f_c at the robot's rate
 //
+// Displacement bound (a workspace / penetration bound, not in the paper): the end-effector's
+// displacement s along n (the integral of ṽ, given to step()) stays within ±d_max. The clamp of
+// eq. 46 narrows as s nears a bound, v_c ≤ (d_max − s)/T_b and v_c ≥ (−d_max − s)/T_b with
+// T_b = 3 (2/ω_c + 1/f_s) (three times the filter's delay at DC plus one sample), so the filtered
+// velocity comes to rest at the bound without a jump in v_c: a target the end-effector cannot
+// reach (an infeasible fᵈ, a sensor that reads nothing) no longer drives the reference away.
+//
 // ṽ n is the reference velocity of the end-effector's task (the position reference is its
 // integral, the acceleration reference its derivative: AdmittanceHook). Hold: while the sensor
 // is stale or faulted (or the mode is off) the filter is fed zero instead of v_c, so ṽ ramps to
@@ -22,6 +29,8 @@ struct AdmittanceGains {
   double v_min = -0.05;     ///< m/s
   double v_max = 0.05;      ///< m/s
   double cutoff_hz = 20.0;  ///< the low-pass's cutoff
+  /// d_max, m: the largest displacement along n either way (the scene's max_displacement).
+  double max_displacement = 0.1;
 };
 
 class Admittance {
@@ -33,8 +42,13 @@ class Admittance {
   Admittance(const AdmittanceGains& gains, double sample_hz);
 
   /// One sample: the filtered velocity ṽ along n (m/s). `f_target` and `f_measured` are the
-  /// target and the sensed force along n (N); `sensor_ok` false holds.
-  double step(double f_target, double f_measured, bool sensor_ok) noexcept;
+  /// target and the sensed force along n (N); `sensor_ok` false holds; `displacement` is the
+  /// end-effector's displacement s along n so far (m, the integral of the velocities returned),
+  /// which the bound keeps within ±max_displacement.
+  double step(double f_target, double f_measured, bool sensor_ok, double displacement = 0.0) noexcept;
+
+  /// T_b, s: the time constant with which v_c is brought to zero at a bound.
+  double brakingTime() const noexcept { return braking_time_; }
 
   double velocity() const noexcept { return filter_.output(); }
   /// v_c of the last sample (0 while holding).
@@ -47,6 +61,7 @@ class Admittance {
   AdmittanceGains gains_;
   ButterworthLowPass3 filter_;
   double clamped_ = 0.0;
+  double braking_time_ = 0.0;
   bool holding_ = false;
 };
 

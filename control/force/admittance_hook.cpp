@@ -110,7 +110,7 @@ void AdmittanceHook::robotCycle(loop::Controller& c, Slot& s) noexcept {
   const bool ok = st.mode != ForceMode::Off && io.stale == 0u && !c.safeStopped() &&
                   std::isfinite(measured) && std::isfinite(target) && n.allFinite();
   s.v_old = s.v_new;
-  s.v_new = s.law.step(target, measured, ok);
+  s.v_new = s.law.step(target, measured, ok, st.normal_displacement);
   s.phase = 0;
   st.target = target;
   st.measured = measured;
@@ -135,6 +135,7 @@ void AdmittanceHook::writeReferences(problem::MultiRobotProblem& p, Slot& s, dou
   st.velocity_ref = v * st.normal;
   st.acceleration_ref = a * st.normal;
   st.displacement += st.velocity_ref * dt;
+  st.normal_displacement += v * dt;
   // A position target moved by something else becomes the nominal position.
   if (s.frame_task->target() != s.written) s.nominal = s.frame_task->target();
   st.position_ref = s.nominal + st.displacement;

@@ -10,9 +10,10 @@
 //     touches along the world normal n: f_sensor = ⟨m_tool g − R f_sample | n⟩;
 //   - takes its target (switch 2, force_mode.hpp): fᵈ, or the force that the QP's previous
 //     solution applies through the end-effector's contact along n;
-//   - steps its Admittance (eq. 45–46 and the Butterworth filter) into ṽ; it holds (feeds the
-//     filter zero) when the sample is stale or not finite, when the controller has stopped and in
-//     mode off;
+//   - steps its Admittance (eq. 45–46 and the Butterworth filter) into ṽ, with the displacement
+//     along n so far (the admittance's bound, max_displacement); it holds (feeds the filter
+//     zero) when the sample is stale or not finite, when the controller has stopped and in mode
+//     off;
 //   - with switch 1 closed, sets the target of the scene's force task: the QP's previous contact
 //     force with its component along n replaced by fᵈ (the tangential components are left where
 //     the QP put them).
@@ -52,6 +53,7 @@ class AdmittanceHook final : public loop::CycleHook {
     std::uint64_t holds = 0;                            ///< robot cycles held while the mode was not off
     Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< n in world axes
     Eigen::Vector3d displacement = Eigen::Vector3d::Zero();
+    double normal_displacement = 0.0;  ///< s: the displacement along n, ∫ṽ dt, m (bounded)
     Eigen::Vector3d position_ref = Eigen::Vector3d::Zero();
     Eigen::Vector3d velocity_ref = Eigen::Vector3d::Zero();
     Eigen::Vector3d acceleration_ref = Eigen::Vector3d::Zero();

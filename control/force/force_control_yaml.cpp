@@ -84,7 +84,7 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
                                 const scene::Scene& sc, const loop::ResolvedHardware& hw, double dt) {
   const Map m(r, n, path,
               {"name", "entity", "task", "sensor", "normal", "normal_frame", "mode", "force", "contact",
-               "force_task", "gain", "velocity_limits", "cutoff", "tool_mass"});
+               "force_task", "gain", "velocity_limits", "cutoff", "tool_mass", "max_displacement"});
   const problem::MultiRobotProblem& p = *sc.problem;
   EndEffectorSpec e;
   e.name = m.name("name");
@@ -207,6 +207,7 @@ EndEffectorSpec readEndEffector(const Reader& r, const YAML::Node& n, const std:
                " Hz)");
   }
   e.tool_mass = m.number("tool_mass", Bound::NonNegative, 0.0);
+  e.gains.max_displacement = m.number("max_displacement", Bound::Positive, e.gains.max_displacement);
 
   e.mode = readMode(r, m.require("mode"), m.at("mode"));
   requireForMode(r, m.require("mode"), m.at("mode"), e, e.mode, e.force_set);

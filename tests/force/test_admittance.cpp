@@ -144,4 +144,45 @@ TEST_CASE("force: admittance parameters are checked", "[force][admittance]") {
   g.v_max = std::nan("");
   CHECK(Admittance::check(g, 1000.0) != nullptr);
   CHECK_THROWS_AS(Admittance(g, 1000.0), std::invalid_argument);
+  g = AdmittanceGains{};
+  CHECK(g.max_displacement == 0.1);
+  g.max_displacement = 0.0;
+  CHECK(Admittance::check(g, 1000.0) != nullptr);
+  g.max_displacement = std::nan("");
+  CHECK(Admittance::check(g, 1000.0) != nullptr);
+}
+
+TEST_CASE("force: the displacement bound stops the reference without a jump", "[force][admittance]") {
+  // A target the end-effector never reaches (nothing sensed, or an infeasible fᵈ): the law asks
+  // for v_max for ever. The displacement s (integrated here from the returned velocities, as the
+  // hook does) must come to rest on the bound, never beyond it, either way; v_c must move by at
+  // most v_max / (f_s T_b) per sample once the search runs (the narrowing of the clamp follows s).
+  for (double fs : {1000.0, 250.0, 100.0}) {
+    for (double dir : {1.0, -1.0}) {
+      INFO("fs = " << fs << ", direction " << dir);
+      AdmittanceGains g;
+      g.max_displacement = 0.02;
+      Admittance a(g, fs);
+      CHECK(a.brakingTime() == Approx(3.0 * (1.0 / (kPi * 20.0) + 1.0 / fs)));
+      double s = 0.0, farthest = 0.0, largest_dvc = 0.0, last_vc = 0.0, backwards = 0.0;
+      const int n = static_cast<int>(3.0 * fs);
+      for (int k = 0; k < n; ++k) {
+        const double v = a.step(dir * 1e4, 0.0, true, s);
+        s += v / fs;
+        farthest = std::max(farthest, dir * s);
+        backwards = std::min(backwards, dir * v);
+        if (k > 0) largest_dvc = std::max(largest_dvc, std::fabs(a.clamped() - last_vc));
+        last_vc = a.clamped();
+        if (k == 0) CHECK(a.clamped() == dir * 0.05);  // far from the bound: eq. 46 as it was
+      }
+      CHECK(farthest <= 0.02);                         // never beyond the bound
+      CHECK(dir * s == Approx(0.02).epsilon(1e-3));    // and at rest on it
+      CHECK(std::fabs(a.velocity()) < 1e-6);
+      CHECK(backwards > -1e-3 * 0.05);                 // no bounce back
+      CHECK(largest_dvc <= 0.05 / (fs * a.brakingTime()) * 1.0001);
+      // Back from the bound: a force above the target moves it away at once.
+      a.step(-dir * 1e4, 0.0, true, s);
+      CHECK(a.clamped() == -dir * 0.05);
+    }
+  }
 }

@@ -265,6 +265,32 @@ TEST_CASE("force: a stale F/T sensor makes the admittance hold, not wind up", "[
   CHECK(st.displacement.z() == Approx(z_after).margin(1e-9));
 }
 
+TEST_CASE("force: the displacement bound stops a search that finds nothing", "[force][loop]") {
+  // No wall: the sensor reads nothing and direct mode searches downwards at v_max; the scene's
+  // max_displacement (1 cm) stops the reference there, the task's position reference within
+  // 1 cm of its nominal position along n, the command back at rest.
+  const std::string text = withSection(
+      "  - {name: tool, task: press, sensor: panda_link8, normal: [0, 0, -1], normal_frame: world, "
+      "mode: direct, force: 500, max_displacement: 0.01}\n");
+  ForceSetup s(text, "p.yaml");
+  REQUIRE(s.hook->admittance(0).gains().max_displacement == 0.01);
+  const Eigen::Vector3d nominal = s.hook->state(0).position_ref;  // the task's target at the start
+  REQUIRE(s.boot());
+  const auto& st = s.hook->state(0);
+  double deepest = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    s.cycle();
+    deepest = std::max(deepest, nominal.z() - st.position_ref.z());
+    if (k == 100) CHECK(st.velocity == Approx(0.05).epsilon(0.01));  // searching at v_max
+  }
+  REQUIRE_FALSE(s.ctrl->safeStopped());
+  CHECK(deepest <= 0.01 + 1e-12);
+  CHECK(nominal.z() - st.position_ref.z() == Approx(0.01).epsilon(2e-3));
+  CHECK(st.normal_displacement == Approx(nominal.z() - st.position_ref.z()).margin(1e-12));
+  CHECK((st.position_ref.head<2>() - nominal.head<2>()).norm() < 1e-12);
+  CHECK(std::fabs(st.velocity) < 1e-5);
+}
+
 TEST_CASE("force: mode and force changes from the timeline are bumpless", "[force][loop]") {
   const std::string text = withSection(
       "  - {name: tool, task: press, sensor: panda_link8, normal: [0, 0, -1], normal_frame: world, "

@@ -79,6 +79,7 @@ TEST_CASE("force: the force_control section is read and resolved", "[force][yaml
   CHECK(e.gains.v_min == -0.05);
   CHECK(e.gains.v_max == 0.05);
   CHECK(e.gains.cutoff_hz == 20.0);
+  CHECK(e.gains.max_displacement == 0.1);
   CHECK(e.tool_mass == 0.0);
 
   // Every key, and the force task giving the contact.
@@ -86,7 +87,7 @@ TEST_CASE("force: the force_control section is read and resolved", "[force][yaml
       "  - {name: tool, entity: panda, task: press, sensor: panda_link8, normal: [0, 0, -2], normal_frame: "
       "task,\n"
       "     mode: qp, force: 12, force_task: press_force, gain: 1.0e-3, velocity_limits: [-0.02, 0.03],\n"
-      "     cutoff: 10, tool_mass: 0.7}\n",
+      "     cutoff: 10, tool_mass: 0.7, max_displacement: 0.03}\n",
       "  - {at: 1.0, force_control: tool, mode: autonomous}\n  - {at: 0.5, force_control: tool, force: 4}\n"
       "  - {at: 0.2, task: posture, weight: 2}\n");
   Built f(full);
@@ -102,6 +103,7 @@ TEST_CASE("force: the force_control section is read and resolved", "[force][yaml
   CHECK(h.gains.v_max == 0.03);
   CHECK(h.gains.cutoff_hz == 10.0);
   CHECK(h.tool_mass == 0.7);
+  CHECK(h.gains.max_displacement == 0.03);
   // The timeline's force-control events in time order; the loop's timeline skips them.
   REQUIRE(g.events.size() == 2);
   CHECK(g.events[0].at == 0.5);
@@ -145,6 +147,8 @@ TEST_CASE("force: force_control errors name file, line and field", "[force][yaml
   CHECK(errorOf("  - " + kItem + "mode: off, cutoff: 125}\n") ==
         at + ".cutoff: the cutoff 125 Hz is not below half the rate of robot 'panda' (250 Hz)");
   CHECK(errorOf("  - " + kItem + "mode: off, gain: -1}\n") == at + ".gain: expected a number > 0, got -1");
+  CHECK(errorOf("  - " + kItem + "mode: off, max_displacement: 0}\n") ==
+        at + ".max_displacement: expected a number > 0, got 0");
   CHECK(errorOf("  - " + kItem + "mode: off, velocity_limits: [0.01, 0.05]}\n") ==
         at + ".velocity_limits: expected [v_min, v_max] with v_min <= 0 <= v_max and v_min < v_max");
   CHECK(errorOf("  - " + kItem + "mode: off, velocity_limits: [0.05]}\n") ==
