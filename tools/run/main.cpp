@@ -180,7 +180,8 @@ int runMain(int argc, char** argv) {
       drivers::SocketCanConfig c;
       c.interface = name;
       c.fd = rh.buses[b].decl.data_bitrate != 0;
-      c.receive_own = true;  // the arm master takes a boot-up only after its reset's own echo
+      c.receive_own = true;           // the arm master takes a boot-up only after its reset's own echo
+      c.timestamps = !o.cycle_clock;  // --clock cycles: a frame's time is the cycle that reads it
       auto bus = std::make_unique<drivers::SocketCanBus>();
       std::string err;
       if (!bus->open(c, &err)) throw std::runtime_error("--bus " + name + ": " + err);
@@ -262,14 +263,15 @@ int runMain(int argc, char** argv) {
 
   // ---- boot: every device booted and enabled ----
   // Pacing (wall clock, absolute deadlines) and the time base: with simulated buses the drivers,
-  // the buses and the plant run on the simulated clock even when the cycles are paced.
-  loop::DeadlineClock clock(period);
+  // the buses and the plant run on the simulated clock even when the cycles are paced; with
+  // --clock cycles the SocketCAN drivers run on the cycles (cycles × period, paced --pace periods apart).
+  loop::DeadlineClock clock(static_cast<drivers::TimeNs>(std::llround(static_cast<double>(period) * o.pace)));
   const bool paced = o.realtime || o.paced || !sim;
   const drivers::TimeNs wall0 = paced ? clock.start() : 0;
   drivers::TimeNs now = sim ? 0 : wall0;
   auto next = [&]() {
     const drivers::TimeNs deadline = paced ? clock.wait() : 0;
-    return sim ? now + period : deadline;
+    return sim || o.cycle_clock ? now + period : deadline;  // --clock cycles: cycles × period
   };
   // A signal from here on ends the boot or the loop (after the cycle under way) with the safe exit.
   std::signal(SIGINT, onInterrupt);

@@ -10,6 +10,7 @@ namespace mrqp::run {
 const char* runUsage() noexcept {
   return "usage: mrqp-run SCENE.yaml --out DIR [--plant mujoco|ideal] [--bus sim|IFNAME[,IFNAME...]]\n"
          "                [--cycles N | --duration S] [--realtime | --paced]\n"
+         "                [--clock wall|cycles [--pace F]]\n"
          "                [--fault KIND@SECONDS[:DEVICE]]... [--set KEY=VALUE]... [--no-force-control]\n"
          "                [--no-plots] [--quiet]\n"
          "  Runs the scene as a controller: the loop reads the drives over CAN, solves the QP and\n"
@@ -17,6 +18,10 @@ const char* runUsage() noexcept {
          "  KIND: heartbeat-loss, bus-off, frame-loss, corrupt-frames, nan-feedback, stale-ft, infeasible.\n"
          "  DEVICE: a drive ENTITY.JOINT or a bus name of the scene's hardware section.\n"
          "  --paced: cycles at the scene's period on the wall clock (as --realtime, without its set-up).\n"
+         "  --clock cycles (SocketCAN): the drivers' time (heartbeat and other timeouts) is the cycles run\n"
+         "  times the period, not the wall clock, for a plant lock-stepped to the SYNCs (mrqp-plant\n"
+         "  --clock sync); the cycles are still paced on the wall clock, F periods apart with --pace F\n"
+         "  (slow motion, F >= 1, for a machine that cannot run the loop and its plant in real time).\n"
          "  --no-force-control: every admittance of the scene's force_control section in mode off.\n";
 }
 
@@ -72,6 +77,15 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
       o.realtime = true;
     } else if (a == "--paced") {
       o.paced = true;
+    } else if (a == "--clock") {
+      const std::string v = value();
+      if (v != "wall" && v != "cycles")
+        throw std::invalid_argument("--clock: expected wall or cycles, got '" + v + "'");
+      o.cycle_clock = v == "cycles";
+    } else if (a == "--pace") {
+      o.pace = optionNumber(a, value());
+      if (!(o.pace >= 1.0 && o.pace <= 100.0))
+        throw std::invalid_argument("--pace: expected a factor in [1, 100]");
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (a == "--no-plots") {
@@ -94,6 +108,7 @@ RunOptions parseRunOptions(int argc, char** argv, bool* help) {
   if (o.out.empty()) throw std::invalid_argument("--out DIR is required");
   if (o.cycles > 0 && o.duration > 0.0)
     throw std::invalid_argument("--cycles and --duration exclude each other");
+  if (o.pace != 1.0 && !o.cycle_clock) throw std::invalid_argument("--pace needs --clock cycles");
   return o;
 }
 

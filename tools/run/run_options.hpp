@@ -17,6 +17,8 @@ struct RunOptions {
   double duration = -1.0;
   bool realtime = false;
   bool paced = false;  ///< cycles paced at the period without the real-time set-up
+  bool cycle_clock = false;  ///< --clock cycles: the drivers' time is cycles run × period (SocketCAN)
+  double pace = 1.0;         ///< --pace F (with --clock cycles): F periods of wall time per cycle
   bool quiet = false;
   bool plots = true;
   bool force_control = true;  ///< false: --no-force-control, every admittance in mode off
