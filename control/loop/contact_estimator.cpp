@@ -30,6 +30,19 @@ Eigen::Vector3d logRotation(const Eigen::Matrix3d& R) noexcept {
   return aa.angle() * aa.axis();
 }
 
+/// The point whose position the fit of contact d compares, in the fitted side's frame: the frame
+/// origin, or for a contact that leaves every rotation free (`free: [twist, tilt]`: a point held,
+/// the bodies turning about it) the centre of its points, the point the no-slip constraint holds.
+/// `rel`: the surface frame in the other frame (the frozen pose).
+Eigen::Vector3d heldPoint(const problem::ContactDesc& d, const problem::Pose& rel, bool surface) noexcept {
+  if ((d.free & problem::kFreeRotations) != problem::kFreeRotations || d.npoints < 1)
+    return Eigen::Vector3d::Zero();
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int k = 0; k < d.npoints; ++k) c += d.points[static_cast<std::size_t>(k)];
+  c /= static_cast<double>(d.npoints);
+  return surface ? c : Eigen::Vector3d(rel.R * c + rel.p);
+}
+
 }  // namespace
 
 ContactEstimator::ContactEstimator(problem::MultiRobotProblem& problem, const std::vector<bool>& measured,
@@ -156,11 +169,12 @@ void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& link
       const problem::Pose want = targetPose(c, surface);
       const problem::Pose have = e.framePose(frame);
       const Eigen::Vector3d dr = logRotation(want.R * have.R.transpose());
-      const Eigen::Vector3d dp = want.p - have.p;
+      const Eigen::Vector3d r = heldPoint(d, frozen_[static_cast<std::size_t>(c)].rel, surface);
+      const Eigen::Vector3d dp = (want.p + want.R * r) - (have.p + have.R * r);
       worst = std::max({worst, dr.norm(), dp.norm()});
       t.b.segment<3>(6 * i) = dr;
       t.b.segment<3>(6 * i + 3) = dp;
-      e.frameJacobian(frame, Eigen::Vector3d::Zero(), J_.leftCols(e.nv()));
+      e.frameJacobian(frame, r, J_.leftCols(e.nv()));
       t.A.middleRows(6 * i, 6) = J_.middleCols(t.first, t.count);
       dropFree(c, t, i);
     }
@@ -178,8 +192,9 @@ void ContactEstimator::fitPose(Target& t, const std::array<int, kMaxLinks>& link
 }
 
 void ContactEstimator::fitVelocity(Target& t, const std::array<int, kMaxLinks>& links, int n) noexcept {
-  // Zero relative twist at each contact frame's origin: J_est v_est = twist of the other side
-  // − the contribution of this entity's other (measured) coordinates.
+  // Zero relative twist at each contact frame's origin (at the held point of a contact free in
+  // every rotation): J_est v_est = twist of the other side − the contribution of this entity's
+  // other (measured) coordinates.
   problem::Entity& e = p_.entity(t.entity);
   const int nv = e.nv();
   for (int i = 0; i < n; ++i) {
@@ -189,12 +204,14 @@ void ContactEstimator::fitVelocity(Target& t, const std::array<int, kMaxLinks>& 
     const int frame = surface ? d.frame : d.other_frame;
     const int other_entity = surface ? d.other_entity : d.entity;
     const int other_frame = surface ? d.other_frame : d.frame;
-    e.frameJacobian(frame, Eigen::Vector3d::Zero(), J_.leftCols(nv));
+    const Eigen::Vector3d r = heldPoint(d, frozen_[static_cast<std::size_t>(c)].rel, surface);
+    e.frameJacobian(frame, r, J_.leftCols(nv));
     Eigen::Matrix<double, 6, 1> want = Eigen::Matrix<double, 6, 1>::Zero();
     if (other_entity >= 0) {
       problem::Entity& o = p_.entity(other_entity);
       const problem::Pose of = o.framePose(other_frame);
-      const Eigen::Vector3d point = of.R.transpose() * (e.framePose(frame).p - of.p);
+      const problem::Pose ef = e.framePose(frame);
+      const Eigen::Vector3d point = of.R.transpose() * (ef.p + ef.R * r - of.p);
       o.frameJacobian(other_frame, point, Jo_.leftCols(o.nv()));
       want.noalias() = Jo_.leftCols(o.nv()) * o.v();
     }

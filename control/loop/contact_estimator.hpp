@@ -5,7 +5,9 @@
 // contact) when it first becomes active; each cycle the estimated coordinates of an entity are the
 // least-squares fit of those poses (a few Gauss–Newton steps from the prediction, over the
 // world-aligned frame Jacobians), and its velocities the least-squares fit of zero relative
-// twist. Entities are estimated in order: floating bases of measured robots first, then the others,
+// twist. A contact's free directions leave the fit; one that leaves every rotation free holds a
+// point, the centre of its points, and its rows compare that point instead of the frame origin.
+// Entities are estimated in order: floating bases of measured robots first, then the others,
 // each from contacts whose other side is the ground or an entity already measured or estimated.
 // A floating base with an IMU fuses the two (BaseAttitudeFilter, a complementary filter on SO(3)):
 // at each IMU sample the base's orientation is the gyro's integration pulled towards the
