@@ -41,6 +41,8 @@ EstimatorHook::Slot::Slot(const EntityEstimationSpec& s, EntityRegressor r, int 
       q_f(nq, T, s.cutoff_hz),
       v_f(nv, T, s.cutoff_hz),
       mu_f(nv, T, s.cutoff_hz),
+      qq_f(nq, T, s.cutoff_hz),
+      mu_pre(nv, T, s.cutoff_hz),
       mu(Eigen::VectorXd::Zero(nv)),
       q_use(Eigen::VectorXd::Zero(nq)),
       J(Eigen::MatrixXd::Zero(6, nv)),
@@ -254,13 +256,19 @@ bool EstimatorHook::observe(loop::Controller& c, Slot& s) noexcept {
 void EstimatorHook::robotCycle(loop::Controller& c, Slot& s) noexcept {
   if (c.safeStopped() || !observe(c, s)) return;
   const problem::Entity& e = c.problem().entity(s.spec.entity);
-  s.v_f.step(e.v());
-  s.mu_f.step(s.mu);
   if (e.floatingBase()) {
+    s.v_f.step(e.v());
+    s.mu_f.step(s.mu);
     s.q_use = e.q();  // a pose: used as it is (docs/estimation.md)
   } else {
+    // Joint positions through two filters in cascade; q̇ is the first stage's derivative through
+    // the second (= the cascade's derivative), q̈ that one's derivative; μ through the same cascade.
     s.q_f.step(e.q());
-    s.q_use = s.q_f.value();
+    s.qq_f.step(s.q_f.value());
+    s.v_f.step(s.q_f.derivative());
+    s.mu_pre.step(s.mu);
+    s.mu_f.step(s.mu_pre.value());
+    s.q_use = s.qq_f.value();
   }
   s.since += s.period;
   if (s.since < s.spec.settle_s) return;

@@ -7,10 +7,12 @@
 //     side), removes the tool's weight and turns it into the wrench the hand applies on the
 //     entity about the sensor's origin, world axes: f = m_t g − R f_s, τ = (R c_t) × m_t g − R τ_s;
 //   - maps it through the entity's world-aligned Jacobian at that point: μ = Σ Jᵀ (τ; f) (eq. 51);
-//   - filters the entity's velocity (from the loop's contact-kinematics estimate), its joint
-//     positions (a fixed base; a floating base's pose is used as it is) and μ with one
-//     second-order state-variable filter each (StateVariableFilter): q̈ is the exact derivative of
-//     the filtered velocity, and all terms of Y φ = μ are delayed alike;
+//   - filters with second-order state-variable filters (StateVariableFilter), so that all terms
+//     of Y φ = μ are delayed alike: a fixed-base entity's joint positions (the contact fit of the
+//     measured joint positions) through two in cascade, q̇ and q̈ the exact derivatives of that
+//     cascade (the loop's velocity of a mechanism is its plan's, not a measurement), μ through the
+//     same cascade; a floating base's velocity and μ through one each (q̈ the derivative of the
+//     filtered velocity), its pose used as it is;
 //   - after the filter has settled, steps the InertialEstimator with (q, q̇, q̈, μ) filtered;
 //   - with feed_back, writes the estimated springs (K, C, O) into the QP's model of the entity.
 // It holds (no update) while a hand's sample is stale, a value is not finite, or the controller
@@ -77,6 +79,7 @@ class EstimatorHook final : public loop::CycleHook {
     EntityRegressor regressor;
     std::unique_ptr<InertialEstimator> est;
     StateVariableFilter q_f, v_f, mu_f;
+    StateVariableFilter qq_f, mu_pre;  // a fixed base: the cascade's second stage of q, first of μ
     Eigen::VectorXd mu, q_use;
     Eigen::MatrixXd J;
     Eigen::VectorXd sd;  // standard deviations of the full φ (updated after each update)
