@@ -184,7 +184,10 @@ void runRealtime(const Options& o, const Bridge& br, Counters& n) {
 /// --clock sync (lockstep_clock.hpp): the process sleeps until a frame of the controller arrives
 /// (or a step passes, for the buses still on the wall clock), hands each frame to its simulated bus
 /// at that bus's time and, after each SYNC, runs the bus by one SYNC period, the plant to the
-/// latest bus time, and sends what the devices answered.
+/// latest bus time, and sends what the devices answered. A bus that never carries a SYNC (MIT
+/// motors or FD hand boards without a SYNC of their own) stays on the wall clock; a frame that
+/// comes after the last SYNC of the run (the safe exit's NMT commands) reaches its device only if
+/// another SYNC follows.
 void runLockstep(const Options& o, const loop::ResolvedHardware& rh, const Bridge& br, loop::Plant& plant,
                  Counters& n) {
   std::vector<drivers::TimeNs> periods;
@@ -229,7 +232,9 @@ void runLockstep(const Options& o, const loop::ResolvedHardware& rh, const Bridg
         forwardOut(br, b, n);
       }
     }
-    if (lc.onWall(drivers::monotonicNow() - t0)) {
+    // The buses not locked yet follow the wall clock in whole steps (one plant step per step).
+    const drivers::TimeNs wall = drivers::monotonicNow() - t0;
+    if (lc.onWall(wall - wall % (o.step_us * 1000))) {
       for (std::size_t b = 0; b < br.can.size(); ++b) {
         if (lc.locked(b)) continue;
         runBus(b, lc.busTime(b));
