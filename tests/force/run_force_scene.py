@@ -17,7 +17,7 @@ door  (panda_door_force): the handle hand in mode qp tracks its target: RMS erro
 press (force_press): the direct hand reaches a torque limit (torque_limit_hits > 0) while the qp
       hand never does, and the qp hand's target (the QP's force) stays below the user's force
       (the QP saturated it). Never skipped. Its tracking (RMS at most PRESS_RMS_N) is printed,
-      not asserted: measured 294 N, the hands lose the table while the direct hand pushes the
+      not asserted: measured 223 N, the hands lose the table while the direct hand pushes the
       robot (docs/force-control.md, "The force scenes").
 
 For door, a failed outcome is reported as a skip (exit 77, with the reason) only while a
