@@ -64,14 +64,14 @@ TEST_CASE("Bad estimation sections are refused with file, line and field", "[est
              Catch::Contains(
                  "estimation[0].hands[0].sensor: entity 'panda' has no F/T sensor on frame 'panda_link7'"));
   CHECK_THAT(
-      errorOf(replaced(text, "    cutoff: 2.0", "    cutoff: 200")),
+      errorOf(replaced(text, "    cutoff: 1.0", "    cutoff: 200")),
       Catch::Contains("estimation[0].cutoff: the cutoff 200 Hz is not below half the F/T rate (250 Hz)"));
-  CHECK_THAT(errorOf(replaced(text, "    cutoff: 2.0", "    estimate: mass")),
+  CHECK_THAT(errorOf(replaced(text, "    cutoff: 1.0", "    estimate: mass")),
              Catch::Contains("estimation[0].estimate: link parameters are estimated for rigid objects only"));
-  CHECK_THAT(errorOf(replaced(text, "    cutoff: 2.0", "    estimate: heavy")),
+  CHECK_THAT(errorOf(replaced(text, "    cutoff: 1.0", "    estimate: heavy")),
              Catch::Contains("estimation[0].estimate: expected mass, mass_com, full or none"));
   CHECK_THAT(errorOf(replaced(text, "std: [5.0, 2.0, 2.0]", "std: [5.0, 0.0, 2.0]")),
              Catch::Contains("estimation[0].springs[0].std: expected three positive standard deviations"));
-  CHECK_THAT(errorOf(replaced(text, "    cutoff: 2.0", "    cutof: 2.0")),
+  CHECK_THAT(errorOf(replaced(text, "    cutoff: 1.0", "    cutof: 2.0")),
              Catch::Contains("estimation[0].cutof: unknown key"));
 }
