@@ -174,7 +174,7 @@ void CollisionConstraint::writeRow(const MultiRobotProblem& p, int r, int k, Con
   mb.at = res.b;
   const double drift = nrm.dot(eb.frameBiasAcceleration(bb.frame, lb).tail<3>() -
                                ea.frameBiasAcceleration(ba.frame, la).tail<3>()) +
-                       collision::distanceCurvature(res, ba.shape.radius, bb.shape.radius, ma, mb);
+                       collision::distanceCurvature(res, ba.shape.radius, bb.shape.radius, ma, mb, dt);
   row_pair_[ur] = k;
   row_e_[ur] = (res.distance - c.security) / (c.interaction - c.security);
   row_ddot_[ur] = ddot;

@@ -4,7 +4,8 @@
 // (control/collision/distance.hpp), once d < δi (interaction distance), with e = (d − δs)/(δi − δs):
 //
 //   ḋ = nᵀ(J_b v − J_a v),   d̈ = g q̈ + D,   g = nᵀ(J_b − J_a),
-//   D = nᵀ(J̇_b v − J̇_a v) + c   (c: the normal turning and the witnesses sliding, distance_rate.hpp)
+//   D = nᵀ(J̇_b v − J̇_a v) + c   (c: the normal turning and the witnesses sliding, distance_rate.hpp,
+//                                 over the step Δt: the witnesses kept on their features)
 //
 // The loop integrates by semi-implicit Euler (v ← v + Δt q̈, q ← q ⊕ Δt v), so over one step
 // d_{k+1} = d + Δt ḋ + Δt² (g q̈ + ½ D) + O(Δt³); the row asks d_{k+1} − d ≥ −Δt ξ e, i.e.

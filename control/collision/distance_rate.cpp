@@ -9,7 +9,7 @@
 namespace mrqp::collision {
 
 double distanceCurvature(const DistanceResult& r, double radius_a, double radius_b, const RigidMotion& ma,
-                         const RigidMotion& mb) noexcept {
+                         const RigidMotion& mb, double step) noexcept {
   const int k = r.simplex_size;
   if (r.penetrating || k < 1 || k > 3) return 0.0;
   const auto i0 = std::size_t{0};
@@ -46,7 +46,20 @@ double distanceCurvature(const DistanceResult& r, double radius_a, double radius
     const double det = G.determinant();
     const double scale = G.diagonal().head(m).maxCoeff();
     if (!(std::abs(det) > 1e-12 * std::pow(scale, m))) return 0.0;  // a degenerate face: no rate
-    const Eigen::Vector2d mu_dot = G.inverse() * rhs;
+    Eigen::Vector2d mu_dot = G.inverse() * rhs;
+    if (step > 0.0) {
+      // Keep every barycentric coordinate within [0, 1] over the step (distance_rate.hpp).
+      const double rate0 = -mu_dot.head(m).sum();
+      double scale_dot = 1.0;
+      for (int i = 0; i < k; ++i) {
+        const double ld = i == 0 ? rate0 : mu_dot(i - 1);
+        const double li = r.simplex_lambda[static_cast<std::size_t>(i)];
+        const double room = ld < 0.0 ? li : 1.0 - li;
+        const double travel = std::abs(ld) * step;
+        if (travel > std::max(room, 0.0)) scale_dot = std::min(scale_dot, std::max(room, 0.0) / travel);
+      }
+      mu_dot *= scale_dot;
+    }
     double sum = 0.0;
     for (int j = 1; j < k; ++j) {
       lambda_dot[static_cast<std::size_t>(j)] = mu_dot(j - 1);

@@ -43,7 +43,16 @@ struct RigidMotion {
 
 /// The term c of d̈ above for a separated result `r` of distance(A, B) whose shapes have radii
 /// `radius_a`, `radius_b`, body A moving with `ma` and body B with `mb`. 0 for a penetrating result.
+///
+/// `step` > 0: c as a prediction over a step of that length. The sliding part of c is
+/// −f_ss λ̇² (f: the distance of the simplex's points as a function of their barycentric
+/// coordinates), which grows without bound as the closest features turn parallel (two capsules
+/// side by side: f_ss → 0, λ̇ → ∞) although the witnesses then reach the end of their feature
+/// within a fraction of the step. Where some λ_i + λ̇_i step would leave [0, 1], λ̇ is scaled by
+/// s < 1 so that it does not: the sliding part becomes f_ss λ̇² (s² − 2s), the minimum of the
+/// second-order model of f over the step with the witnesses kept on their simplex, instead of its
+/// unconstrained minimum. 0 (the default): the instantaneous value.
 double distanceCurvature(const DistanceResult& r, double radius_a, double radius_b, const RigidMotion& ma,
-                         const RigidMotion& mb) noexcept;
+                         const RigidMotion& mb, double step = 0.0) noexcept;
 
 }  // namespace mrqp::collision

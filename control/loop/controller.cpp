@@ -274,16 +274,34 @@ void Controller::write(drivers::TimeNs now) noexcept {
   }
 }
 
+namespace {
+
+/// A CSP target as the arm driver puts it on the wire: whole encoder increments of the drive's
+/// scale (robot_io.cpp gives every CiA 402 drive the default one, 2π/524288 rad).
+double cspTarget(double rad) noexcept {
+  const mrqp_fw_arm_scale scale = MRQP_FW_ARM_SCALE_DEFAULT_INIT;
+  std::int32_t inc = 0;
+  double out = rad;
+  if (mrqp_fw_arm_position_to_inc(&scale, rad, &inc) != MRQP_FW_CONV_OK) return rad;
+  (void)mrqp_fw_arm_position_from_inc(&scale, inc, &out);
+  return out;
+}
+
+}  // namespace
+
 void Controller::remember(RobotIo& r, std::size_t i) noexcept {
   // What the drive will report for this setpoint: its position, and (CSP) the velocity it derives
-  // from two successive targets; an impedance joint the velocity commanded; a torque drive's joint
-  // is not servoed: report what was predicted.
+  // from two successive targets, both as the drive receives them (rounded to its increments: the
+  // unrounded ones would feed the rounding, up to 3 mrad/s per joint, into the state's velocity
+  // every robot cycle); an impedance joint the velocity commanded; a torque drive's joint is not
+  // servoed: report what was predicted.
   if (r.joints[i].kind != JointKind::Position) {
     r.q_sent[i] = r.q_cmd[i];
     r.v_sent[i] = r.v_cmd[i];
   } else {
-    r.v_sent[i] = (r.q_cmd[i] - r.q_sent[i]) / (dt_ * r.divisor);
-    r.q_sent[i] = r.q_cmd[i];
+    const double target = cspTarget(r.q_cmd[i]);
+    r.v_sent[i] = (target - r.q_sent[i]) / (dt_ * r.divisor);
+    r.q_sent[i] = target;
   }
 }
 
