@@ -71,6 +71,10 @@ EstimatorHook::EstimatorHook(loop::Controller& controller, const EstimationSpec&
     slots_.push_back(std::make_unique<Slot>(es, makeEntityRegressor(es.model, e, g), e.nv(), e.nq(), T));
     Slot& s = *slots_.back();
     RegressorModel& model = *s.regressor.model;
+    for (const EstimationHandSpec& h : es.hands) {
+      s.rigid_grasp.push_back(p.contact(h.contact).free != 0 ? 1 : 0);
+      s.grasp_point.push_back(Eigen::Vector3d::Zero());
+    }
 
     EstimatorConfig config;
     const int nb = model.bodyCount();
@@ -241,15 +245,22 @@ bool EstimatorHook::observe(loop::Controller& c, Slot& s) noexcept {
   const problem::Entity& e = p.entity(s.spec.entity);
   const Eigen::Vector3d& g = p.settings().gravity;
   s.mu.setZero();
+  std::size_t k = 0;
   for (const EstimationHandSpec& h : s.spec.hands) {
     const loop::RobotIo& robot = c.robots()[static_cast<std::size_t>(h.robot)];
     if (robot.ft_sensors[static_cast<std::size_t>(h.sensor)].stale != 0u) return false;
     const problem::Pose sensor = p.entity(h.robot_entity).framePose(h.sensor_frame);
     const problem::Vector6d w =
         handWrench(robot.wrench[static_cast<std::size_t>(h.sensor)], sensor.R, h.tool_mass, h.tool_com, g);
-    e.frameJacobian(h.object_frame, inFrameOf(e.framePose(h.object_frame), sensor.p), s.J);
+    // Along a contact's free directions the QP's model lets the entity move relative to the hand
+    // (docs/estimation.md, box_mass): the lever arm of such a hand is the one of the grasp.
+    Eigen::Vector3d& point = s.grasp_point[k];
+    if (!s.grasp_taken || s.rigid_grasp[k] == 0) point = inFrameOf(e.framePose(h.object_frame), sensor.p);
+    e.frameJacobian(h.object_frame, point, s.J);
     s.mu.noalias() += s.J.transpose() * w;
+    ++k;
   }
+  s.grasp_taken = true;
   return s.mu.allFinite() && e.q().allFinite() && e.v().allFinite();
 }
 

@@ -7,6 +7,9 @@
 //     side), removes the tool's weight and turns it into the wrench the hand applies on the
 //     entity about the sensor's origin, world axes: f = m_t g − R f_s, τ = (R c_t) × m_t g − R τ_s;
 //   - maps it through the entity's world-aligned Jacobian at that point: μ = Σ Jᵀ (τ; f) (eq. 51);
+//     for a hand whose contact leaves directions free (the QP's model then does not tie the
+//     entity to the hand along them) the point is the sensor's place in the entity's frame
+//     taken at the first observation: a hand that holds what it weighs holds it rigidly;
 //   - filters with second-order state-variable filters (StateVariableFilter), so that all terms
 //     of Y φ = μ are delayed alike: a fixed-base entity's joint positions (the contact fit of the
 //     measured joint positions) through two in cascade, q̇ and q̈ the exact derivatives of that
@@ -96,6 +99,11 @@ class EstimatorHook final : public loop::CycleHook {
     Eigen::Matrix3d object_Ic = Eigen::Matrix3d::Identity();  // its scene inertia about the CoM
     int value_offset = 0;  // first of this entity's values in values_
     std::vector<std::string> state_names;
+    // Per hand: whether its contact leaves directions free, and the sensor's point in the
+    // entity's frame (taken once for those hands, at every observation for the others).
+    std::vector<char> rigid_grasp;
+    std::vector<Eigen::Vector3d> grasp_point;
+    bool grasp_taken = false;
   };
   Slot& slot(int i) noexcept { return *slots_[static_cast<std::size_t>(i)]; }
   const Slot& slot(int i) const noexcept { return *slots_[static_cast<std::size_t>(i)]; }
