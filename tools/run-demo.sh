@@ -4,10 +4,10 @@
 # (links, joints, nq, nv, mass, timing of the generated functions); then run the multi-robot QP
 # scenes of tools/scenes closed loop and plot them (build/demo/*.png); last, the controller loop
 # (mrqp-run) runs the co-manipulation scene over CAN (simulated buses carrying the emulated drive,
-# F/T and IMU firmware) on the ideal plant, and the door scene on the MuJoCo plant behind the same
-# emulated firmware (where the build has MuJoCo); summary, log, plots and the rendered motion in
-# build/demo/comanipulation and build/demo/panda_door_mujoco. (The humanoid scenes do not yet reach
-# their targets on MuJoCo: docs/mujoco.md, "The shipped scenes on MuJoCo".)
+# F/T and IMU firmware) on the MuJoCo plant behind that firmware, then the door scene and JVRC-1's
+# box scene the same way; summary, log, plots and the rendered motion in build/demo/comanipulation,
+# build/demo/panda_door_mujoco and build/demo/jvrc1_box_mujoco. A build without MuJoCo runs the
+# co-manipulation scene on the ideal plant instead (docs/mujoco.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -75,18 +75,17 @@ run_scene() {
     *) exit "$rc" ;;
   esac
 }
-echo "   co-manipulation, ideal plant" >&2
-run_scene comanipulation ideal comanipulation
 # The MuJoCo plant behind the emulated drives where the build has MuJoCo (mrqp-render is built
-# with it).
+# with it); the ideal plant (the models as their own plant) otherwise.
 if cmake --build build/demo -j"$jobs" --target mrqp-render > build/demo-build.log 2>&1; then
+  echo "   co-manipulation, MuJoCo plant (docs/mujoco.md)" >&2
+  run_scene comanipulation mujoco comanipulation
   echo "== the door and JVRC-1 carrying a box on the MuJoCo plant (mrqp-run --plant mujoco, docs/mujoco.md)" >&2
   run_scene panda_door mujoco panda_door_mujoco
   run_scene jvrc1_box mujoco jvrc1_box_mujoco
-  ./build/demo/tools/render/mrqp-render tools/scenes/comanipulation.yaml --out "$root/build/demo/comanipulation" \
-    || echo "(rendering failed: no picture of the scene)" >&2
   echo "(on MuJoCo: build/demo/{panda_door_mujoco,jvrc1_box_mujoco}/{summary.json,log.csv,*.png,motion.mp4})" >&2
 else
-  echo "(this build has no MuJoCo: no physics plant run, no rendering of the scene)" >&2
+  echo "(this build has no MuJoCo: co-manipulation on the ideal plant, no rendering of the scene)" >&2
+  run_scene comanipulation ideal comanipulation
 fi
 echo "(summary, log, plots and motion: build/demo/comanipulation/{summary.json,log.csv,*.png,motion.mp4})" >&2
