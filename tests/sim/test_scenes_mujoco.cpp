@@ -9,8 +9,10 @@
 
 #include <cmath>
 
+#include "box_at_target.hpp"
 #include "sim_loop.hpp"
 
+using mrqp::sim::testing::checkBoxReachesTarget;
 using mrqp::sim::testing::shippedScene;
 using mrqp::sim::testing::SimLoop;
 
@@ -70,55 +72,9 @@ TEST_CASE("MuJoCo loop: comanipulation starts where the controller thinks it is"
   checkStartsConsistent("comanipulation.yaml");
 }
 
-namespace {
-
-/// The world rotation of a scene's roll-pitch-yaw (R = Rz(yaw) Ry(pitch) Rx(roll)).
-Eigen::Matrix3d rpyRotation(double roll, double pitch, double yaw) {
-  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
-
-}  // namespace
-
 TEST_CASE("MuJoCo loop: jvrc1_box runs to its end and brings the box to its target", "[sim][loop]") {
   SimLoop s(shippedScene("jvrc1_box.yaml"), "jvrc1_box.yaml");
   REQUIRE(s.hw.robots.at(0).state == mrqp::loop::JointState::Commanded);
   REQUIRE(s.boot());
-  const long cycles = std::lround(s.sc.settings.duration / s.sc.settings.dt);
-  const long ran = s.run(cycles);
-  INFO("safe stop: " << mrqp::loop::stopReasonStr(s.ctrl->stopReason()) << " " << s.ctrl->stopDevice()
-                     << " at cycle " << s.ctrl->stopCycle());
-  REQUIRE(ran == cycles);
-  CHECK(s.plant->warnings() == 0);
-  // The target of the box's task, from the scene (xyz + rpy), against the plant's true box.
-  const mrqp::scene::TaskSpec* task = nullptr;
-  for (const auto& t : s.spec.tasks) {
-    if (t.name == "box_pose") task = &t;
-  }
-  REQUIRE(task != nullptr);
-  REQUIRE(task->target.has_value());
-  const Eigen::VectorXd& target = *task->target;
-  const Eigen::Isometry3d box = s.truePose("box", "box");
-  const double position_error = (box.translation() - target.head<3>()).norm();
-  const double rotation_error =
-      Eigen::AngleAxisd(
-          Eigen::Matrix3d(box.linear() * rpyRotation(target(3), target(4), target(5)).transpose()))
-          .angle();
-  INFO("true box " << box.translation().transpose() << ", position error " << position_error
-                   << " m, rotation error " << rotation_error << " rad; controller's task error "
-                   << s.taskError("box_pose"));
-  // The ideal plant ends 0.006 from the target after these 3 s (docs/mujoco.md); here the true
-  // box, held by welds of finite stiffness and moved by servos that lag a robot cycle, within
-  // 3 mm and 5 mrad.
-  CHECK(position_error < 3e-3);
-  CHECK(rotation_error < 5e-3);
-  // The controller's box (from the commanded kinematics of the hands) and base (IMU and feet)
-  // are the plant's within 3 mm.
-  auto& p = *s.sc.problem;
-  const Eigen::VectorXd box_q = s.trueQ("box");
-  const Eigen::VectorXd jvrc_q = s.trueQ("jvrc");
-  CHECK((p.entity(p.entityIndex("box")).q().head<3>() - box_q.head<3>()).norm() < 3e-3);
-  CHECK((p.entity(p.entityIndex("jvrc")).q().head<3>() - jvrc_q.head<3>()).norm() < 3e-3);
+  checkBoxReachesTarget(s);
 }
