@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "hardware_scene.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
 #include "loop/scene_override.hpp"
@@ -35,35 +36,20 @@ const char* kDrives =
     "        - {bus: a, joints: [panda_joint1, panda_joint2, panda_joint3, panda_joint4, panda_joint5]}\n"
     "        - {bus: b, first_node: 6, joints: [panda_joint6, panda_joint7, panda_finger_joint1]}\n";
 
-loop::ResolvedHardware resolve(const std::string& hw) {
-  const std::string text = std::string(kScene) + hw;
-  scene::ModelRegistry models;
-  scene::addBuiltinModels(models);
-  const scene::Scene sc = scene::buildScene(scene::loadSceneString(text, "s.yaml"), models);
-  return loop::resolveHardware(loop::readHardwareString(text, "s.yaml"), *sc.problem, sc.settings.dt);
-}
-
-std::string errorOf(const std::string& hw) {
-  try {
-    resolve(hw);
-  } catch (const scene::SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+const looptest::HardwareScene kPanda(kScene);
 
 }  // namespace
 
 TEST_CASE("loop: hardware rpdo_timeout: read, resolved and given to the arm master", "[loop][hardware]") {
   const loop::ResolvedHardware with =
-      resolve(std::string(kBuses) + kRobot + "      rpdo_timeout: 0.05\n" + kDrives);
+      kPanda.resolve(std::string(kBuses) + kRobot + "      rpdo_timeout: 0.05\n" + kDrives);
   REQUIRE(with.robots.size() == 1u);
   CHECK(with.robots[0].rpdo_timeout_s == 0.05);
   drivers::ArmConfig ac;
   loop::applySafetyConfig(ac, with, &with.robots[0]);
   CHECK(ac.rpdo_timeout_ms == 50u);
   // Absent: nothing written.
-  const loop::ResolvedHardware without = resolve(std::string(kBuses) + kRobot + kDrives);
+  const loop::ResolvedHardware without = kPanda.resolve(std::string(kBuses) + kRobot + kDrives);
   CHECK(without.robots[0].rpdo_timeout_s == 0.0);
   drivers::ArmConfig ac0;
   loop::applySafetyConfig(ac0, without, &without.robots[0]);
@@ -72,15 +58,15 @@ TEST_CASE("loop: hardware rpdo_timeout: read, resolved and given to the arm mast
 
 TEST_CASE("loop: hardware rpdo_timeout errors name file, line and field", "[loop][hardware]") {
   const std::string head = std::string(kBuses) + kRobot;
-  CHECK(errorOf(head + "      rpdo_timeout: 70\n" + kDrives) ==
+  CHECK(kPanda.errorOf(head + "      rpdo_timeout: 70\n" + kDrives) ==
         "s.yaml:11: hardware.robots[0].rpdo_timeout: expected a time in [0.001, 65.535] s (0x1400:05 holds "
         "milliseconds in 16 bits), got 70");
-  CHECK(errorOf(head + "      rpdo_timeout: 0.004\n" + kDrives) ==
+  CHECK(kPanda.errorOf(head + "      rpdo_timeout: 0.004\n" + kDrives) ==
         "s.yaml:11: hardware.robots[0].rpdo_timeout: must exceed the robot's cycle of 0.004 s (one RPDO per "
         "cycle), got 0.004");
-  CHECK(errorOf(head + "      rpdo_timeout: -1\n" + kDrives)
+  CHECK(kPanda.errorOf(head + "      rpdo_timeout: -1\n" + kDrives)
             .rfind("s.yaml:11: hardware.robots[0].rpdo_timeout: ", 0) == 0u);
-  CHECK(errorOf(head + "      rpdo_timeout: fast\n" + kDrives)
+  CHECK(kPanda.errorOf(head + "      rpdo_timeout: fast\n" + kDrives)
             .rfind("s.yaml:11: hardware.robots[0].rpdo_timeout: ", 0) == 0u);
 }
 
@@ -111,7 +97,7 @@ TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and it
       "panda_joint5]}\n"
       "        - {bus: b, first_node: 6, device_type: 0x20192, revision: 0x10000,\n"
       "           joints: [panda_joint6, panda_joint7, panda_finger_joint1]}\n";
-  const loop::ResolvedHardware r = resolve(std::string(kBuses) + kRobot + drives);
+  const loop::ResolvedHardware r = kPanda.resolve(std::string(kBuses) + kRobot + drives);
   REQUIRE(r.robots[0].drives.size() == 8u);
   drivers::ArmDriveConfig first, last;
   loop::applyDriveIdentity(first, r.robots[0].drives[4]);
@@ -123,12 +109,14 @@ TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and it
   CHECK(last.device_type == 0x20192u);
   CHECK(last.revision == 0x10000u);
   CHECK(last.vendor_id == 0u);
-  CHECK(errorOf(std::string(kBuses) + kRobot +
-                "      cia402:\n        - {bus: a, vendor_id: 0x100000000, joints: [panda_joint1]}\n") ==
-        "s.yaml:12: hardware.robots[0].cia402[0].vendor_id: expected an integer in [0, 0xFFFFFFFF], got "
-        "\"0x100000000\"");
-  CHECK(errorOf(std::string(kBuses) + kRobot +
-                "      cia402:\n        - {bus: a, revision: -1, joints: [panda_joint1]}\n")
+  CHECK(
+      kPanda.errorOf(std::string(kBuses) + kRobot +
+                     "      cia402:\n        - {bus: a, vendor_id: 0x100000000, joints: [panda_joint1]}\n") ==
+      "s.yaml:12: hardware.robots[0].cia402[0].vendor_id: expected an integer in [0, 0xFFFFFFFF], got "
+      "\"0x100000000\"");
+  CHECK(kPanda
+            .errorOf(std::string(kBuses) + kRobot +
+                     "      cia402:\n        - {bus: a, revision: -1, joints: [panda_joint1]}\n")
             .rfind("s.yaml:12: hardware.robots[0].cia402[0].revision: expected an integer in [0, 0xFFFFFFFF]",
                    0) == 0u);
 }
@@ -136,10 +124,10 @@ TEST_CASE("loop: hardware cia402 identity: read, given to the arm master, and it
 TEST_CASE("loop: the controller heartbeat is in the bus budget of every bus of CiA 402 drives",
           "[loop][hardware]") {
   const std::string drives = std::string(kRobot) + kDrives;
-  const loop::ResolvedHardware plain = resolve(std::string(kBuses) + drives);
+  const loop::ResolvedHardware plain = kPanda.resolve(std::string(kBuses) + drives);
   const loop::ResolvedHardware hb =
-      resolve(std::string(kBuses) + drives +
-              "  controller_heartbeat: {node: 100, period: 0.001, drive_timeout: 0.01}\n");
+      kPanda.resolve(std::string(kBuses) + drives +
+                     "  controller_heartbeat: {node: 100, period: 0.001, drive_timeout: 0.01}\n");
   REQUIRE(plain.buses.size() == 2u);
   REQUIRE(hb.buses.size() == 2u);
   // Worst case of a 1-byte classic frame: 55 + 10 bits at 1 Mbit/s = 65 µs, once per 1 ms period:

@@ -4,6 +4,7 @@
 
 #include <mrqp/drivers/bus_budget.hpp>
 
+#include "hardware_scene.hpp"
 #include "loop/hardware_check.hpp"
 #include "loop/hardware_yaml.hpp"
 #include "scene/builtin_models.hpp"
@@ -37,22 +38,7 @@ const char* kDrives =
     "panda_finger_joint1]}\n"
     "\n";
 
-loop::ResolvedHardware resolve(const std::string& hw) {
-  const std::string text = std::string(kScene) + hw;
-  scene::ModelRegistry models;
-  scene::addBuiltinModels(models);
-  const scene::Scene sc = scene::buildScene(scene::loadSceneString(text, "s.yaml"), models);
-  return loop::resolveHardware(loop::readHardwareString(text, "s.yaml"), *sc.problem, sc.settings.dt);
-}
-
-std::string errorOf(const std::string& hw) {
-  try {
-    resolve(hw);
-  } catch (const scene::SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+const looptest::HardwareScene kPanda(kScene);
 
 const std::string kBuses = "hardware:\n  buses:\n    - {name: a}\n    - {name: b}\n";  // lines 12-15
 
@@ -60,7 +46,7 @@ const std::string kBuses = "hardware:\n  buses:\n    - {name: a}\n    - {name: b
 
 TEST_CASE("loop: a valid hardware section resolves joints, nodes and buses", "[loop][hardware]") {
   const std::string hw = kBuses + "  robots:\n    - entity: panda\n      divisor: 4\n" + kDrives;
-  const loop::ResolvedHardware r = resolve(hw);
+  const loop::ResolvedHardware r = kPanda.resolve(hw);
   REQUIRE(r.robots.size() == 1);
   REQUIRE(r.robots[0].drives.size() == 8);
   CHECK(r.robots[0].drives[5].node == 6);
@@ -79,33 +65,36 @@ TEST_CASE("loop: a valid hardware section resolves joints, nodes and buses", "[l
 
 TEST_CASE("loop: hardware section errors name file, line and field", "[loop][hardware]") {
   const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";  // lines 16-18
-  CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, mode: cxp, joints: [panda_joint1]}\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot +
+                       "      cia402:\n        - {bus: a, mode: cxp, joints: [panda_joint1]}\n") ==
         "s.yaml:20: hardware.robots[0].cia402[0].mode: expected csp or cst, got \"cxp\"");
-  CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: c, joints: [panda_joint1]}\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot + "      cia402:\n        - {bus: c, joints: [panda_joint1]}\n") ==
         "s.yaml:20: hardware.robots[0].cia402[0].bus: unknown bus 'c' (not in hardware.buses)");
-  CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [elbow]}\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [elbow]}\n") ==
         "s.yaml:20: hardware.robots[0].cia402[0].joints[0]: entity 'panda' has no joint 'elbow'");
-  CHECK(
-      errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1, panda_joint1]}\n") ==
-      "s.yaml:20: hardware.robots[0].cia402[0].joints[1]: 'panda_joint1' is listed twice");
-  CHECK(errorOf(kBuses + robot +
-                "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n        - {bus: a, first_node: "
-                "1, joints: [panda_joint2]}\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot +
+                       "      cia402:\n        - {bus: a, joints: [panda_joint1, panda_joint1]}\n") ==
+        "s.yaml:20: hardware.robots[0].cia402[0].joints[1]: 'panda_joint1' is listed twice");
+  CHECK(kPanda.errorOf(
+            kBuses + robot +
+            "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n        - {bus: a, first_node: "
+            "1, joints: [panda_joint2]}\n") ==
         "s.yaml:21: hardware.robots[0].cia402[1].joints[0]: node id 1 on bus 'a' is already used (line 20)");
-  CHECK(errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot + "      cia402:\n        - {bus: a, joints: [panda_joint1]}\n") ==
         "s.yaml:17: hardware.robots[0]: actuated joint 'panda_joint2' of 'panda' has no drive");
-  CHECK(errorOf(kBuses + "  robots:\n    - entity: door\n") ==
+  CHECK(kPanda.errorOf(kBuses + "  robots:\n    - entity: door\n") ==
         "s.yaml:17: hardware.robots[0].entity: unknown entity 'door'");
-  CHECK(errorOf(kBuses + robot + "      speed: 3\n") == "s.yaml:19: hardware.robots[0].speed: unknown key");
-  CHECK(errorOf(kBuses + robot + "      safe_stop: brake\n") ==
+  CHECK(kPanda.errorOf(kBuses + robot + "      speed: 3\n") ==
+        "s.yaml:19: hardware.robots[0].speed: unknown key");
+  CHECK(kPanda.errorOf(kBuses + robot + "      safe_stop: brake\n") ==
         "s.yaml:19: hardware.robots[0].safe_stop: expected hold or quick_stop, got \"brake\"");
-  CHECK(errorOf(kBuses + "  robots:\n    - entity: panda\n      divisor: 0\n") ==
+  CHECK(kPanda.errorOf(kBuses + "  robots:\n    - entity: panda\n      divisor: 0\n") ==
         "s.yaml:18: hardware.robots[0].divisor: expected an integer in [1, 1000], got 0");
-  CHECK(errorOf("hardware:\n  buses:\n    - {name: a, bitrate: 5}\n  robots: []\n") ==
+  CHECK(kPanda.errorOf("hardware:\n  buses:\n    - {name: a, bitrate: 5}\n  robots: []\n") ==
         "s.yaml:14: hardware.buses[0].bitrate: expected an integer in [10000, 20000000], got 5");
-  CHECK(
-      errorOf(kBuses + robot + kDrives + "      imus:\n        - {frame: panda_link8, bus: a, node: 30}\n") ==
-      "s.yaml:25: hardware.robots[0].imus: 'panda' has no floating base to estimate");
+  CHECK(kPanda.errorOf(kBuses + robot + kDrives +
+                       "      imus:\n        - {frame: panda_link8, bus: a, node: 30}\n") ==
+        "s.yaml:25: hardware.robots[0].imus: 'panda' has no floating base to estimate");
 }
 
 TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loop][hardware]") {
@@ -123,35 +112,35 @@ TEST_CASE("loop: an over-budget bus is refused with the budget's message", "[loo
   b.addHeartbeats(8, 0.1);
   std::string message;
   REQUIRE_FALSE(b.check(&message));
-  CHECK(errorOf(hw) == "s.yaml:14: hardware.buses[0]: " + message);
+  CHECK(kPanda.errorOf(hw) == "s.yaml:14: hardware.buses[0]: " + message);
 }
 
 TEST_CASE("loop: a robot's joint state is measured by default, or commanded", "[loop][hardware]") {
   const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";  // lines 16-18
-  CHECK(resolve(kBuses + robot + kDrives).robots.at(0).state == loop::JointState::Measured);
-  CHECK(resolve(kBuses + robot + "      state: commanded\n" + kDrives).robots.at(0).state ==
+  CHECK(kPanda.resolve(kBuses + robot + kDrives).robots.at(0).state == loop::JointState::Measured);
+  CHECK(kPanda.resolve(kBuses + robot + "      state: commanded\n" + kDrives).robots.at(0).state ==
         loop::JointState::Commanded);
-  CHECK(resolve(kBuses + robot + "      state: measured\n" + kDrives).robots.at(0).state ==
+  CHECK(kPanda.resolve(kBuses + robot + "      state: measured\n" + kDrives).robots.at(0).state ==
         loop::JointState::Measured);
-  CHECK(errorOf(kBuses + robot + "      state: estimated\n" + kDrives) ==
+  CHECK(kPanda.errorOf(kBuses + robot + "      state: estimated\n" + kDrives) ==
         "s.yaml:19: hardware.robots[0].state: expected measured or commanded, got \"estimated\"");
 }
 
 TEST_CASE("loop: the frame-loss limit and its window come from the hardware section", "[loop][hardware]") {
   const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";
-  const loop::ResolvedHardware d = resolve(kBuses + robot + kDrives);
+  const loop::ResolvedHardware d = kPanda.resolve(kBuses + robot + kDrives);
   CHECK(d.frame_loss_window == 100.0);
   CHECK(d.frame_loss_limit == 0.02);
   // "hardware:" is line 12; frame_loss is line 13.
   const std::string with = "hardware:\n  frame_loss: {window: 20, limit: 0.25}\n" + kBuses.substr(10);
-  const loop::ResolvedHardware r = resolve(with + robot + kDrives);
+  const loop::ResolvedHardware r = kPanda.resolve(with + robot + kDrives);
   CHECK(r.frame_loss_window == 20.0);
   CHECK(r.frame_loss_limit == 0.25);
-  CHECK(
-      errorOf("hardware:\n  frame_loss: {window: 20, limit: 1.5}\n" + kBuses.substr(10) + robot + kDrives) ==
-      "s.yaml:13: hardware.frame_loss.limit: expected a fraction of robot cycles, at most 1");
-  CHECK(errorOf("hardware:\n  frame_loss: {window: 0}\n" + kBuses.substr(10) + robot + kDrives) ==
+  CHECK(kPanda.errorOf("hardware:\n  frame_loss: {window: 20, limit: 1.5}\n" + kBuses.substr(10) + robot +
+                       kDrives) ==
+        "s.yaml:13: hardware.frame_loss.limit: expected a fraction of robot cycles, at most 1");
+  CHECK(kPanda.errorOf("hardware:\n  frame_loss: {window: 0}\n" + kBuses.substr(10) + robot + kDrives) ==
         "s.yaml:13: hardware.frame_loss.window: expected an integer in [1, 100000], got 0");
-  CHECK(errorOf("hardware:\n  frame_loss: {rate: 0.1}\n" + kBuses.substr(10) + robot + kDrives) ==
+  CHECK(kPanda.errorOf("hardware:\n  frame_loss: {rate: 0.1}\n" + kBuses.substr(10) + robot + kDrives) ==
         "s.yaml:13: hardware.frame_loss.rate: unknown key");
 }
