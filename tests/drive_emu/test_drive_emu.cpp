@@ -9,14 +9,16 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "emu_config_file.hpp"
+
 using namespace mrqp::drivers;
 using namespace mrqp::drive_emu;
+using drive_emu_test::writeConfigFile;
 
 namespace {
 
@@ -156,14 +158,13 @@ TEST_CASE("drive emulator: an EMCY puts the drive in Fault and the driver sees i
 
 TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   const std::string good = "drive_emu_good.yaml";
-  {
-    std::ofstream f(good);
-    f << "interface: vcan0\nincrements_per_rev: 131072\nrated_torque: 5\n"
-         "joint: {inertia: 0.1, damping: 0.2, torque_limit: 30}\n"
-         "nodes:\n  - 1\n  - {node: 2, inertia: 0.2, faults: {stop_heartbeat_at: 2.5, emcy_at: 1, emcy_code: "
-         "0x3210}}\n"
-         "faults: {drop_fraction: 0.01, corrupt_fraction: 0.02}\n";
-  }
+  writeConfigFile(
+      good,
+      "interface: vcan0\nincrements_per_rev: 131072\nrated_torque: 5\n"
+      "joint: {inertia: 0.1, damping: 0.2, torque_limit: 30}\n"
+      "nodes:\n  - 1\n  - {node: 2, inertia: 0.2, faults: {stop_heartbeat_at: 2.5, emcy_at: 1, emcy_code: "
+      "0x3210}}\n"
+      "faults: {drop_fraction: 0.01, corrupt_fraction: 0.02}\n");
   EmuConfig c;
   std::string err;
   REQUIRE(loadConfig(good, &c, &err));
@@ -181,47 +182,26 @@ TEST_CASE("drive emulator: YAML configuration and its errors", "[drive_emu]") {
   CHECK(err.find("node 9") != std::string::npos);
 
   const std::string bad = "drive_emu_bad.yaml";
-  {
-    std::ofstream f(bad);
-    f << "nodes:\n  - {node: 3, inertia: -1}\n";
-  }
+  writeConfigFile(bad, "nodes:\n  - {node: 3, inertia: -1}\n");
   // Errors are "FILE:LINE: FIELD: message", as for every YAML file of mrqp (control/scene/yaml_reader).
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: nodes[0].inertia: expected a number in (0, 1000000], got -1");
-  {
-    std::ofstream f(bad);
-    f << "nodes:\n  - {node: 3, damping: abc}\n";
-  }
+  writeConfigFile(bad, "nodes:\n  - {node: 3, damping: abc}\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: nodes[0].damping: expected a number, got \"abc\"");
-  {
-    std::ofstream f(bad);
-    f << "nodes: [1, 1]\n";
-  }
+  writeConfigFile(bad, "nodes: [1, 1]\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":1: nodes[1]: node id 1 appears twice (first at line 1)");
-  {
-    std::ofstream f(bad);
-    f << "interface: vcan0\nnodes: [1]\njiont: {inertia: 1}\n";
-  }
+  writeConfigFile(bad, "interface: vcan0\nnodes: [1]\njiont: {inertia: 1}\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":3: jiont: unknown key");
-  {
-    std::ofstream f(bad);
-    f << "nodes: [1, 200]\n";
-  }
+  writeConfigFile(bad, "nodes: [1, 200]\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":1: nodes[1]: expected an integer in [1, 127], got 200");
-  {
-    std::ofstream f(bad);
-    f << "nodes: [1]\nfaults: {drop_fraction: 1.5}\n";
-  }
+  writeConfigFile(bad, "nodes: [1]\nfaults: {drop_fraction: 1.5}\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":2: faults.drop_fraction: expected a fraction in [0, 1], got 1.5");
-  {
-    std::ofstream f(bad);
-    f << "nodes:\n  - {node: 2}\n  - {inertia: 1}\n";
-  }
+  writeConfigFile(bad, "nodes:\n  - {node: 2}\n  - {inertia: 1}\n");
   CHECK_FALSE(loadConfig(bad, &c, &err));
   CHECK(err == bad + ":3: nodes[1]: missing required field 'node'");
   std::remove(good.c_str());
@@ -256,10 +236,7 @@ TEST_CASE("drive emulator: hostile configurations are refused with FILE:LINE: FI
       {"[]\n", ":1: (top level): expected a map, got a list of 0"},
   };
   for (const auto& [text, expected] : cases) {
-    {
-      std::ofstream f(bad);
-      f << text;
-    }
+    writeConfigFile(bad, text);
     EmuConfig c;
     std::string err;
     INFO(text);
@@ -281,11 +258,9 @@ TEST_CASE("drive emulator: hostile configurations are refused with FILE:LINE: FI
 TEST_CASE("drive emulator: the vendor profile from YAML, and a strict drive booted by the master",
           "[drive_emu]") {
   const std::string file = "drive_emu_profile.yaml";
-  {
-    std::ofstream f(file);
-    f << "nodes: [1, 2]\nrated_torque: 10\n"
-         "profile: {base: strict, tpdo_count: 3, vendor_id: 0x1234, comm_error_behaviour: 2}\n";
-  }
+  writeConfigFile(file,
+                  "nodes: [1, 2]\nrated_torque: 10\n"
+                  "profile: {base: strict, tpdo_count: 3, vendor_id: 0x1234, comm_error_behaviour: 2}\n");
   EmuConfig c;
   std::string err;
   REQUIRE(loadConfig(file, &c, &err));

@@ -12,23 +12,22 @@
 #include <mrqp/drivers/sim_bus.hpp>
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "emu_config_file.hpp"
+
 using namespace mrqp::drivers;
 using namespace mrqp::drive_emu;
+using drive_emu_test::writeConfigFile;
 
 namespace {
 
 EmuConfig load(const std::string& text, std::string* err) {
   const std::string file = "drive_emu_switches.yaml";
-  {
-    std::ofstream f(file);
-    f << text;
-  }
+  writeConfigFile(file, text);
   EmuConfig c;
   const bool ok = loadConfig(file, &c, err);
   std::remove(file.c_str());
