@@ -17,6 +17,7 @@
 #include <memory>
 #include <vector>
 
+#include "cube_contacts.hpp"
 #include "problem/contact.hpp"
 #include "problem/multi_robot_problem.hpp"
 #include "problem/rigid_object.hpp"
@@ -24,25 +25,14 @@
 
 using namespace mrqp::problem;
 using mrqp::qp::QpStatus;
+using problemtest::contactProblemSettings;
+using problemtest::cube;
+using problemtest::squareContact;
 
 namespace {
 
-std::unique_ptr<Entity> cube(const char* name, double m, const Eigen::Vector3d& p) {
-  auto e = std::make_unique<RigidObject>(name, m, Eigen::Vector3d::Zero(),
-                                         Eigen::Matrix3d::Identity() * (m * 0.1 * 0.1 / 6.0));
-  e->q().head<3>() = p;
-  return e;
-}
-
 ContactDesc square(int entity, double half, double z, const Eigen::Vector3d& normal) {
-  ContactDesc c;
-  c.entity = entity;
-  c.frame = 0;
-  c.npoints = 4;
-  c.points[0] = {-half, -half, z};
-  c.points[1] = {half, -half, z};
-  c.points[2] = {half, half, z};
-  c.points[3] = {-half, half, z};
+  ContactDesc c = squareContact(entity, half, z);
   c.normal = normal;
   c.friction = 1.0;
   c.generators = 4;
@@ -50,13 +40,7 @@ ContactDesc square(int entity, double half, double z, const Eigen::Vector3d& nor
 }
 
 ProblemSettings settings() {
-  ProblemSettings s;
-  s.max_contacts = 4;
-  s.max_contact_generators = 64;
-  s.max_tasks = 4;
-  s.max_constraints = 0;
-  s.max_constraint_rows = 0;
-  s.max_constraint_equalities = 0;
+  ProblemSettings s = contactProblemSettings();
   s.regularisation = 1e-8;
   return s;
 }
@@ -102,8 +86,9 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) {
 }  // namespace
 
 TEST_CASE("contactFrame is the orthonormal basis (t1, t2, n) of the cone generators", "[problem]") {
-  for (const Eigen::Vector3d& n : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(Eigen::Vector3d(1, 2, -3).normalized()),
-                                   Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0)}) {
+  for (const Eigen::Vector3d& n :
+       {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(Eigen::Vector3d(1, 2, -3).normalized()),
+        Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, -1, 0)}) {
     const Eigen::Matrix3d F = contactFrame(n);
     CHECK((F.transpose() * F - Eigen::Matrix3d::Identity()).norm() < 1e-12);
     CHECK(F.determinant() == Approx(1.0));
@@ -244,7 +229,7 @@ TEST_CASE("A task moves a body along its contact's free normal; the held directi
     REQUIRE(p.solve() == QpStatus::Optimal);
     Eigen::MatrixXd J(6, 6);
     p.entity(0).frameJacobian(0, Eigen::Vector3d(0, 0, -0.05), J);  // the contact's centroid
-    const Vector6d a = J * p.acceleration(0);  // v = 0: no bias
+    const Vector6d a = J * p.acceleration(0);                       // v = 0: no bias
     const Eigen::Vector3d a_des(0, 0, K * 0.1);
     if (free == 0) {
       CHECK(a.norm() < 1e-8);

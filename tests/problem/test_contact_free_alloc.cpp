@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "counting_allocator.hpp"
+#include "cube_contacts.hpp"
 #include "problem/contact.hpp"
 #include "problem/multi_robot_problem.hpp"
 #include "problem/rigid_object.hpp"
@@ -23,22 +24,10 @@ TEST_CASE("Contacts with free directions: update and solve allocate nothing", "[
     e->q()(2) = 0.05 + 0.1 * i;
     es.push_back(std::move(e));
   }
-  ProblemSettings s;
-  s.max_contacts = 4;
-  s.max_contact_generators = 64;
-  s.max_tasks = 4;
-  s.max_constraints = 0;
-  s.max_constraint_rows = 0;
-  s.max_constraint_equalities = 0;
-  MultiRobotProblem p(std::move(es), s);
+  MultiRobotProblem p(std::move(es), problemtest::contactProblemSettings());
   // a on the ground, free along its normal; b on a as a point contact free in the tangent plane,
   // plus a surface contact of b on a free to twist and along the normal.
-  ContactDesc ground;
-  ground.entity = 0;
-  ground.frame = 0;
-  ground.npoints = 4;
-  ground.points = {Eigen::Vector3d(-0.05, -0.05, -0.05), Eigen::Vector3d(0.05, -0.05, -0.05),
-                   Eigen::Vector3d(0.05, 0.05, -0.05), Eigen::Vector3d(-0.05, 0.05, -0.05)};
+  ContactDesc ground = problemtest::squareContact(0, 0.05, -0.05);
   ground.free = kFreeNormal;
   ContactDesc on_a = ground;
   on_a.entity = 1;

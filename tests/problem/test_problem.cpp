@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "cube_contacts.hpp"
 #include "loop/solution_integrator.hpp"
 #include "problem/contact.hpp"
 #include "problem/multi_robot_problem.hpp"
@@ -18,25 +19,13 @@
 
 using namespace mrqp::problem;
 using mrqp::qp::QpStatus;
+using problemtest::cube;
+using problemtest::squareContact;
 
 namespace {
 
-std::unique_ptr<Entity> cube(const char* name, double m, double z,
-                             const Eigen::Vector3d& com = Eigen::Vector3d::Zero()) {
-  auto e = std::make_unique<RigidObject>(name, m, com, Eigen::Matrix3d::Identity() * (m * 0.1 * 0.1 / 6.0));
-  e->q()(2) = z;
-  return e;
-}
-
 ContactDesc square(int entity, double half, double z) {
-  ContactDesc c;
-  c.entity = entity;
-  c.frame = 0;
-  c.npoints = 4;
-  c.points[0] = {-half, -half, z};
-  c.points[1] = {half, -half, z};
-  c.points[2] = {half, half, z};
-  c.points[3] = {-half, half, z};
+  ContactDesc c = squareContact(entity, half, z);
   c.friction = 0.5;
   return c;
 }
@@ -83,7 +72,7 @@ TEST_CASE("The support polygon is the convex hull with inward half-planes", "[pr
 
 TEST_CASE("A free body falls with g", "[problem]") {
   std::vector<std::unique_ptr<Entity>> es;
-  es.push_back(cube("a", 2.0, 1.0, {0.01, 0.02, -0.03}));
+  es.push_back(cube("a", 2.0, {0.0, 0.0, 1.0}, {0.01, 0.02, -0.03}));
   es[0]->v() << 0.3, -0.2, 0.1, 0.5, 0.0, -1.0;  // spinning while it falls
   MultiRobotProblem p(std::move(es), ProblemSettings{});
   p.update();
@@ -96,7 +85,7 @@ TEST_CASE("A free body falls with g", "[problem]") {
 TEST_CASE("A body resting on the ground is carried by a force m·g through its CoM", "[problem]") {
   std::vector<std::unique_ptr<Entity>> es;
   const Eigen::Vector3d com(0.02, -0.01, 0.0);
-  es.push_back(cube("a", 3.0, 0.05, com));
+  es.push_back(cube("a", 3.0, {0.0, 0.0, 0.05}, com));
   MultiRobotProblem p(std::move(es), ProblemSettings{});
   const int c = p.addContact(square(0, 0.05, -0.05));
   REQUIRE(c >= 0);
@@ -114,8 +103,8 @@ TEST_CASE("A body resting on the ground is carried by a force m·g through its C
 
 TEST_CASE("Two stacked bodies: the reaction is the action's opposite in both EoMs", "[problem]") {
   std::vector<std::unique_ptr<Entity>> es;
-  es.push_back(cube("bottom", 3.0, 0.05));
-  es.push_back(cube("top", 1.5, 0.15));
+  es.push_back(cube("bottom", 3.0, {0.0, 0.0, 0.05}));
+  es.push_back(cube("top", 1.5, {0.0, 0.0, 0.15}));
   MultiRobotProblem p(std::move(es), ProblemSettings{});
   const int ground = p.addContact(square(0, 0.05, -0.05));
   ContactDesc between = square(1, 0.04, -0.05);  // the top body's lower face on the bottom body
@@ -138,7 +127,7 @@ TEST_CASE("Two stacked bodies: the reaction is the action's opposite in both EoM
 
 TEST_CASE("Contacts and tasks are added, removed and refused with a reason", "[problem]") {
   std::vector<std::unique_ptr<Entity>> es;
-  es.push_back(cube("a", 1.0, 0.05));
+  es.push_back(cube("a", 1.0, {0.0, 0.0, 0.05}));
   ProblemSettings s;
   s.max_contacts = 1;
   s.max_tasks = 1;
@@ -183,8 +172,8 @@ TEST_CASE("Contacts and tasks are added, removed and refused with a reason", "[p
 
 TEST_CASE("A group CoM task measures the mass-weighted CoM of its entities", "[problem]") {
   std::vector<std::unique_ptr<Entity>> es;
-  es.push_back(cube("a", 1.0, 0.0));
-  es.push_back(cube("b", 3.0, 0.0));
+  es.push_back(cube("a", 1.0, {0.0, 0.0, 0.0}));
+  es.push_back(cube("b", 3.0, {0.0, 0.0, 0.0}));
   es[1]->q()(0) = 2.0;
   MultiRobotProblem p(std::move(es), ProblemSettings{});
   const int id = p.addTask(std::make_unique<ComTask>(0b11u, Eigen::Vector3d(1.0, 0.0, 0.0)));
