@@ -23,19 +23,40 @@ using looptest::LoopSetup;
 
 namespace {
 
-std::string twoArms(const std::vector<std::string>& sets) {
+std::string twoArmsText(const std::string& safe_exit) {
   std::string text = looptest::sceneText("two_arms.yaml");
-  for (const std::string& s : sets) text = loop::applySceneOverride(text, "two_arms.yaml", s);
+  if (!safe_exit.empty())
+    text = loop::applySceneOverride(text, "two_arms.yaml", "hardware.safe_exit=" + safe_exit);
   return text;
 }
 
-std::vector<std::string> driveNames(const LoopSetup& s) {
-  std::vector<std::string> names;
-  for (const loop::RobotIo& r : s.ctrl->robots()) {
-    for (const loop::JointIo& j : r.joints) names.push_back(j.name);
+/// two_arms on the emulated rig (two robots, four buses); `safe_exit`, when not empty, the value of
+/// its hardware.safe_exit.
+struct TwoArms : LoopSetup {
+  explicit TwoArms(const std::string& safe_exit) : LoopSetup(twoArmsText(safe_exit), "two_arms.yaml") {}
+
+  std::vector<std::string> driveNames() const {
+    std::vector<std::string> names;
+    for (const loop::RobotIo& r : ctrl->robots()) {
+      for (const loop::JointIo& j : r.joints) names.push_back(j.name);
+    }
+    return names;
   }
-  return names;
-}
+
+  /// The safe exit after the boot: it completes, and once its last frames have reached the drives,
+  /// every drive's firmware is in the NMT state `nmt`. Returns the exit's result.
+  loop::LifecycleResult checkSafeExit(mrqp_fw_nmt_state nmt) {
+    const loop::LifecycleResult exit = loop::exitDevices(*ctrl, now, period, rig.get());
+    CHECK(exit.done);
+    // Let the last frames reach the drives.
+    rig->advanceTo(now + 5 * period);
+    for (const std::string& j : driveNames()) {
+      INFO(j);
+      CHECK(rig->drive(j)->firmware().nmt() == nmt);
+    }
+    return exit;
+  }
+};
 
 std::string joined(const std::vector<std::string>& lines) {
   std::string all;
@@ -47,7 +68,7 @@ std::string joined(const std::vector<std::string>& lines) {
 
 TEST_CASE("loop: boot failure: an SDO abort ends the boot, is reported, and every drive gets the safe exit",
           "[loop][safety][boot]") {
-  LoopSetup s(twoArms({"hardware.safe_exit={stop: disable_voltage, nmt: stopped}"}), "two_arms.yaml");
+  TwoArms s("{stop: disable_voltage, nmt: stopped}");
   // The right arm's second drive refuses TPDO1's transmission type (0x1800:02): a value its
   // firmware does not support.
   loop::PlantCia402Drive* bad = s.rig->drive("right.panda_joint2");
@@ -74,15 +95,10 @@ TEST_CASE("loop: boot failure: an SDO abort ends the boot, is reported, and ever
   CHECK(text.find("right.panda_joint1:") == std::string::npos);
   CHECK(text.find("left: its ") != std::string::npos);
 
-  const loop::LifecycleResult exit = loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get());
-  CHECK(exit.done);
-  // Let the last frames reach the drives.
-  s.rig->advanceTo(s.now + 5 * s.period);
-  for (const std::string& j : driveNames(s)) {
+  const loop::LifecycleResult exit = s.checkSafeExit(MRQP_FW_NMT_STATE_STOPPED);
+  for (const std::string& j : s.driveNames()) {
     INFO(j);
-    const auto& fw = s.rig->drive(j)->firmware();
-    CHECK(fw.nmt() == MRQP_FW_NMT_STATE_STOPPED);
-    CHECK(fw.state() != MRQP_FW_CIA402_OPERATION_ENABLED);
+    CHECK(s.rig->drive(j)->firmware().state() != MRQP_FW_CIA402_OPERATION_ENABLED);
   }
   CHECK_THAT(loop::describeSafeExit(s.hw, exit),
              Catch::Contains("disable voltage, then NMT stop") && Catch::Contains(": done after"));
@@ -90,7 +106,7 @@ TEST_CASE("loop: boot failure: an SDO abort ends the boot, is reported, and ever
 
 TEST_CASE("loop: boot failure: drives enabled before the boot gave up are stopped by the safe exit",
           "[loop][safety][boot]") {
-  LoopSetup s(twoArms({"hardware.safe_exit={stop: quick_stop, nmt: stopped}"}), "two_arms.yaml");
+  TwoArms s("{stop: quick_stop, nmt: stopped}");
   // The right arm's second drive sends no PDO: it is started but never reports being enabled.
   s.rig->drive("right.panda_joint2")->firmware().setPdoSilent(true);
 
@@ -99,7 +115,7 @@ TEST_CASE("loop: boot failure: drives enabled before the boot gave up are stoppe
   REQUIRE_FALSE(boot.done);
   CHECK_FALSE(loop::bootFailed(boot));
   // Meanwhile every other drive was enabled (the independent observer: the firmware).
-  for (const std::string& j : driveNames(s)) {
+  for (const std::string& j : s.driveNames()) {
     if (j == "right.panda_joint2") continue;
     INFO(j);
     CHECK(s.rig->drive(j)->firmware().state() == MRQP_FW_CIA402_OPERATION_ENABLED);
@@ -110,13 +126,10 @@ TEST_CASE("loop: boot failure: drives enabled before the boot gave up are stoppe
   CHECK(text.find("right.panda_joint2: ") != std::string::npos);
   CHECK(text.find("left.panda_joint1") == std::string::npos);
 
-  const loop::LifecycleResult exit = loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get());
-  CHECK(exit.done);
-  s.rig->advanceTo(s.now + 5 * s.period);
-  for (const std::string& j : driveNames(s)) {
+  s.checkSafeExit(MRQP_FW_NMT_STATE_STOPPED);
+  for (const std::string& j : s.driveNames()) {
     INFO(j);
     const auto& fw = s.rig->drive(j)->firmware();
-    CHECK(fw.nmt() == MRQP_FW_NMT_STATE_STOPPED);
     CHECK(fw.state() == MRQP_FW_CIA402_SWITCH_ON_DISABLED);
     if (j != "right.panda_joint2") CHECK(fw.lastControlword() == 0x0000u);  // disable voltage, last
   }
@@ -124,18 +137,16 @@ TEST_CASE("loop: boot failure: drives enabled before the boot gave up are stoppe
 
 TEST_CASE("loop: boot failure: a stop request (a signal) ends the boot, the safe exit follows",
           "[loop][safety][boot]") {
-  LoopSetup s(twoArms({}), "two_arms.yaml");
+  TwoArms s("");
   int asked = 0;
   const loop::LifecycleResult boot =
       loop::bootDevices(*s.ctrl, s.now, s.period, s.rig.get(), 10.0, {}, [&asked] { return ++asked >= 5; });
   CHECK_FALSE(boot.done);
   CHECK_FALSE(loop::bootFailed(boot));
   CHECK(boot.cycles == 5);
-  CHECK(loop::exitDevices(*s.ctrl, s.now, s.period, s.rig.get()).done);
-  s.rig->advanceTo(s.now + 5 * s.period);
-  for (const std::string& j : driveNames(s)) {
+  s.checkSafeExit(MRQP_FW_NMT_STATE_PRE_OPERATIONAL);  // the default safe_exit
+  for (const std::string& j : s.driveNames()) {
     INFO(j);
-    CHECK(s.rig->drive(j)->firmware().nmt() == MRQP_FW_NMT_STATE_PRE_OPERATIONAL);  // the default safe_exit
     CHECK(s.rig->drive(j)->firmware().state() != MRQP_FW_CIA402_OPERATION_ENABLED);
   }
 }
