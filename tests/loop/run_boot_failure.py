@@ -17,11 +17,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
-def main() -> int:
-    if len(sys.argv) != 4:
-        print(__doc__, file=sys.stderr)
-        return 2
-    run, scene, out = sys.argv[1:4]
+def check(run, scene, out) -> int:
     shutil.rmtree(out, ignore_errors=True)  # no summary.json of an earlier run
     r = mrqp_run.run(run, scene, out, plant="ideal", duration=0.5, echo=True,
                      args=["--set", "hardware.robots[1].cia402[0].vendor_id=0x1234"], expect=None)
@@ -43,10 +39,8 @@ def main() -> int:
     if ("safe exit of every device (CiA 402 drives: quick stop, then NMT pre-operational; "
             "the other devices disabled): done after") not in err:
         failures.append("no completed safe exit")
-    for f in failures:
-        print(f"run_boot_failure: {f}", file=sys.stderr)
-    return 1 if failures else 0
+    return mrqp_run.report("run_boot_failure", failures)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(mrqp_run.main(__doc__, 3, check))

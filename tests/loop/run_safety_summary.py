@@ -17,11 +17,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 
-def main() -> int:
-    if len(sys.argv) != 4:
-        print(__doc__, file=sys.stderr)
-        return 2
-    run, scene, out = sys.argv[1:4]
+def check(run, scene, out) -> int:
     r = mrqp_run.run(run, scene, out, plant="ideal", duration=0.6, echo=True,
                      args=["--fault", "nan-feedback@0.2:panda.panda_joint3",
                            "--set", "hardware.robots[0].safe_stop=quick_stop"])
@@ -47,11 +43,8 @@ def main() -> int:
         failures.append(f"safe exit: {s['safe_exit']!r}")
     if s["allocations_in_loop"] not in (0, -1):
         failures.append(f"{s['allocations_in_loop']} allocations in the loop")
-    for f in failures:
-        print(f"run_safety_summary: {f}", file=sys.stderr)
-    print(f"run_safety_summary: safe stop {s['safe_stop']!r}; {driver}")
-    return 1 if failures else 0
+    return mrqp_run.report("run_safety_summary", failures, f"safe stop {s['safe_stop']!r}; {driver}")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(mrqp_run.main(__doc__, 3, check))

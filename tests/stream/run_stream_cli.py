@@ -7,8 +7,12 @@ scenarios hil.stream and hil.stream_strict run it in the VM.
 
 usage: run_stream_cli.py MRQP_STREAM
 """
+import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import mrqp_run  # noqa: E402  (tests/support/mrqp_run.py)
 
 CASES = [
     # (arguments, exit status, text expected on stderr)
@@ -27,20 +31,15 @@ CASES = [
 ]
 
 
-def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
-        return 2
+def check(mrqp_stream):
     failures = []
     for args, status, text in CASES:
-        p = subprocess.run([sys.argv[1], *args], capture_output=True, text=True, timeout=30)
+        p = subprocess.run([mrqp_stream, *args], capture_output=True, text=True, timeout=30)
         if p.returncode != status or text not in p.stderr:
             failures.append(f"{' '.join(args)}: exit {p.returncode} (expected {status}), stderr {p.stderr.strip()!r}")
-    for f in failures:
-        print(f"run_stream_cli: {f}", file=sys.stderr)
-    print(f"run_stream_cli: {len(CASES) - len(failures)} of {len(CASES)} cases as documented")
-    return 1 if failures else 0
+    return mrqp_run.report("run_stream_cli", failures,
+                           f"{len(CASES) - len(failures)} of {len(CASES)} cases as documented")
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(mrqp_run.main(__doc__, 1, check))

@@ -13,6 +13,12 @@ run_*.py tests (the preamble they share).
     r.failures()                       # the usual checks: exit status 0, no safe stop, no
                                        # allocation in the loop (each one a line of text)
 
+    def check(run, scene, out):        # a test's own checks: its exit status
+        ...
+        return mrqp_run.report("run_x", failures)
+    if __name__ == "__main__":
+        sys.exit(mrqp_run.main(__doc__, 3, check))
+
 The command is `MRQP_RUN SCENE [--plant P] --out OUT [--duration D] --no-plots --quiet ARGS...`
 (`plots=True` drops --no-plots, `quiet=False` drops --quiet); command() builds it for a test that
 runs the process itself (e.g. to send it a signal). Nothing here checks a scene's outcome: each
@@ -127,3 +133,22 @@ def run(mrqp_run, scene, out=None, *, plant=None, duration=None, args=(), quiet=
         if expect == 0 and r.summary is None:
             raise RunError(f"{' '.join(cmd)}: no summary.json in {out}")
     return r
+
+
+def report(name, failures, last_line=None):
+    """Prints each failure as a line `NAME: failure` on stderr, then `NAME: LAST_LINE` (when given)
+    on stdout; returns the test's exit status: 1 with failures, else 0."""
+    for f in failures:
+        print(f"{name}: {f}", file=sys.stderr)
+    if last_line is not None:
+        print(f"{name}: {last_line}")
+    return 1 if failures else 0
+
+
+def main(doc, nargs, check):
+    """The command line of a test program: `check(*arguments)` when it was given exactly `nargs`
+    arguments, its return value the exit status; otherwise `doc` (the usage) on stderr and 2."""
+    if len(sys.argv) != nargs + 1:
+        print(doc, file=sys.stderr)
+        return 2
+    return check(*sys.argv[1:])

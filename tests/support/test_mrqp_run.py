@@ -88,10 +88,7 @@ def main():
             mrqp_run.run(fake, "ok", os.path.join(tmp, "expect_ok"), expect=0)
         except mrqp_run.RunError as e:
             failures.append(f"expect=0 with ok: {e}")
-    for f in failures:
-        print(f"test_mrqp_run: {f}", file=sys.stderr)
-    print(f"test_mrqp_run: {'FAIL' if failures else 'PASS'}")
-    return 1 if failures else 0
+    return mrqp_run.report("test_mrqp_run", failures, "FAIL" if failures else "PASS")
 
 
 if __name__ == "__main__":
