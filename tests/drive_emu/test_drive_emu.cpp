@@ -14,70 +14,15 @@
 #include <utility>
 #include <vector>
 
+#include "emu_bench.hpp"
 #include "emu_config_file.hpp"
 
 using namespace mrqp::drivers;
 using namespace mrqp::drive_emu;
+using drive_emu_test::Bench;
 using drive_emu_test::writeConfigFile;
 
 namespace {
-
-struct Bench {
-  explicit Bench(const EmuConfig& emu_cfg) {
-    SimNodeConfig mc;
-    mc.name = "master";
-    mc.rx_queue = 2048;
-    master = bus.addNode(mc);
-    SimNodeConfig ec;
-    ec.name = "drive-emu";
-    ec.tx_queue = 256;
-    emu = std::make_unique<SimDriveEmulator>(*bus.addNode(ec), emu_cfg);
-    router = std::make_unique<BusRouter>(*master);
-    ArmConfig cfg;
-    cfg.cycle_period = milliseconds(2);  // 3 drives x (RPDO, TPDO1, TPDO2) + SYNC fit in 2 ms at 1 Mbit/s
-    for (const EmuNode& n : emu_cfg.nodes) {
-      ArmDriveConfig d;
-      d.node = n.node;
-      d.scale = n.scale;
-      cfg.drives.push_back(d);
-    }
-    config = cfg;
-    arm = ArmDriver::create({router.get()}, cfg, &error);
-  }
-  const FaultReport& cycle() {
-    bus.advanceTo(t);
-    router->poll(t);
-    const FaultReport& r = arm->update(t);
-    flags |= r.flags;
-    arm->transmit(t);
-    t += config.cycle_period;
-    return r;
-  }
-  bool bootAndEnable() {
-    arm->start(t);
-    for (int k = 0; k < 2000 && arm->phase() != ArmPhase::Running; ++k) {
-      cycle();
-    }
-    if (arm->phase() != ArmPhase::Running) {
-      return false;
-    }
-    arm->requestEnable(t);
-    for (int k = 0; k < 200 && !arm->allEnabled(); ++k) {
-      cycle();
-    }
-    return arm->allEnabled();
-  }
-
-  SimBus bus;
-  SimNode* master = nullptr;
-  std::unique_ptr<SimDriveEmulator> emu;
-  std::unique_ptr<BusRouter> router;
-  ArmConfig config;
-  std::unique_ptr<ArmDriver> arm;
-  std::string error;
-  std::uint32_t flags = 0;
-  TimeNs t = 0;
-};
 
 EmuConfig threeNodes() {
   EmuConfig c;

@@ -17,10 +17,12 @@
 #include <utility>
 #include <vector>
 
+#include "emu_bench.hpp"
 #include "emu_config_file.hpp"
 
 using namespace mrqp::drivers;
 using namespace mrqp::drive_emu;
+using drive_emu_test::Bench;
 using drive_emu_test::writeConfigFile;
 
 namespace {
@@ -34,57 +36,6 @@ EmuConfig load(const std::string& text, std::string* err) {
   if (!ok) c.nodes.clear();
   return c;
 }
-
-/// The master and one emulated drive on a SimBus; the master stops cycling after the enable.
-struct Bench {
-  Bench(const EmuConfig& emu_cfg, std::uint16_t master_rpdo_timeout_ms) {
-    SimNodeConfig mc;
-    mc.name = "master";
-    mc.rx_queue = 2048;
-    master = bus.addNode(mc);
-    SimNodeConfig ec;
-    ec.name = "drive-emu";
-    ec.tx_queue = 256;
-    emu = std::make_unique<SimDriveEmulator>(*bus.addNode(ec), emu_cfg);
-    router = std::make_unique<BusRouter>(*master);
-    config.cycle_period = milliseconds(2);
-    config.rpdo_timeout_ms = master_rpdo_timeout_ms;
-    for (const EmuNode& n : emu_cfg.nodes) {
-      ArmDriveConfig d;
-      d.node = n.node;
-      d.scale = n.scale;
-      config.drives.push_back(d);
-    }
-    arm = ArmDriver::create({router.get()}, config, &error);
-  }
-  void cycle() {
-    bus.advanceTo(t);
-    router->poll(t);
-    (void)arm->update(t);
-    arm->transmit(t);
-    t += config.cycle_period;
-  }
-  bool bootAndEnable() {
-    arm->start(t);
-    for (int k = 0; k < 2000 && arm->phase() != ArmPhase::Running; ++k) cycle();
-    if (arm->phase() != ArmPhase::Running) return false;
-    arm->requestEnable(t);
-    for (int k = 0; k < 200 && !arm->allEnabled(); ++k) cycle();
-    for (int k = 0; k < 5; ++k) cycle();
-    return arm->allEnabled();
-  }
-  /// The master falls silent (no RPDO, no SYNC) for `ms` milliseconds.
-  void silence(int ms) { bus.advanceTo(t + milliseconds(ms)); }
-
-  SimBus bus;
-  SimNode* master = nullptr;
-  std::unique_ptr<SimDriveEmulator> emu;
-  std::unique_ptr<BusRouter> router;
-  ArmConfig config;
-  std::unique_ptr<ArmDriver> arm;
-  std::string error;
-  TimeNs t = 0;
-};
 
 }  // namespace
 
@@ -135,7 +86,7 @@ TEST_CASE("drive emulator: an RPDO deadline from the profile or from the master 
   SECTION("from the profile: 0x6007 = 2, disable voltage") {
     Bench b(load("nodes: [1]\nprofile: {rpdo_timeout_ms: 20, abort_connection_option: 2}\n", &err), 0);
     REQUIRE(b.arm != nullptr);
-    REQUIRE(b.bootAndEnable());
+    REQUIRE(b.bootAndEnable(5));  // then the master stops cycling
     b.silence(10);
     CHECK(b.emu->emulator().state(0) == MRQP_FW_CIA402_OPERATION_ENABLED);  // within its deadline
     b.silence(60);
@@ -145,14 +96,14 @@ TEST_CASE("drive emulator: an RPDO deadline from the profile or from the master 
   SECTION("from the master's write of 0x1400:05: 0x6007 = 3, quick stop") {
     Bench b(load("nodes: [1]\nprofile: {abort_connection_option: 3}\n", &err), 20);
     REQUIRE(b.arm != nullptr);
-    REQUIRE(b.bootAndEnable());
+    REQUIRE(b.bootAndEnable(5));  // then the master stops cycling
     b.silence(60);
     CHECK(b.emu->emulator().state(0) == MRQP_FW_CIA402_QUICK_STOP_ACTIVE);
   }
   SECTION("no deadline anywhere: the drive stays enabled") {
     Bench b(load("nodes: [1]\nprofile: {abort_connection_option: 3}\n", &err), 0);
     REQUIRE(b.arm != nullptr);
-    REQUIRE(b.bootAndEnable());
+    REQUIRE(b.bootAndEnable(5));  // then the master stops cycling
     b.silence(60);
     CHECK(b.emu->emulator().state(0) == MRQP_FW_CIA402_OPERATION_ENABLED);
   }
