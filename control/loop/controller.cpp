@@ -62,6 +62,7 @@ Controller::Controller(problem::MultiRobotProblem& problem, const ResolvedHardwa
   for (std::size_t r = 0; r < hw.robots.size(); ++r) {
     robots_.push_back(makeRobotIo(hw, r, problem_.entity(hw.robots[r].entity), routers, dt_));
     commanded_.push_back(hw.robots[r].state == JointState::Commanded ? 1 : 0);
+    interpolating_.push_back(hw.robots[r].interpolating_drives ? 1 : 0);
   }
   if (options_.contact_estimation) {
     std::vector<bool> measured(static_cast<std::size_t>(problem_.entityCount()), false);
@@ -174,6 +175,7 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
     if (!robotCycle(r)) continue;
     problem::Entity& e = problem_.entity(r.entity);
     const bool commanded = commanded_[static_cast<std::size_t>(&r - robots_.data())] != 0u;
+    const bool interpolating = interpolating_[static_cast<std::size_t>(&r - robots_.data())] != 0u;
     for (std::size_t i = 0; i < r.joints.size(); ++i) {
       const JointIo& j = r.joints[i];
       const drivers::JointFeedback fb = j.device->joint(j.index);
@@ -200,9 +202,12 @@ void Controller::estimate(drivers::TimeNs now) noexcept {
       // The feedback was sampled at the SYNC that carried the previous setpoint: correct the
       // state predicted since then by what the joint did differently from that setpoint
       // (state: measured). A robot whose state is its command keeps the prediction: its encoders
-      // are checked (above) and logged, and its tracking error is recorded.
+      // are checked (above) and logged, and its tracking error is recorded. Drives that ramp to
+      // each setpoint over the period sample their velocity as that ramp starts, on the ramp to
+      // the setpoint before (interpolating_drives): compared with the last setpoint's velocity,
+      // every change of the commanded velocity would come back, negated, as a measured one.
       const double dq = fb.position - r.q_sent[i];
-      const double dv = fb.velocity - r.v_sent[i];
+      const double dv = fb.velocity - (interpolating ? r.v_sent_before[i] : r.v_sent[i]);
       if (cycle_ > 0) {
         r.tracking_error_max = std::max(r.tracking_error_max, std::fabs(dq));
       }
@@ -295,6 +300,7 @@ void Controller::remember(RobotIo& r, std::size_t i) noexcept {
   // unrounded ones would feed the rounding, up to 3 mrad/s per joint, into the state's velocity
   // every robot cycle); an impedance joint the velocity commanded; a torque drive's joint is not
   // servoed: report what was predicted.
+  r.v_sent_before[i] = r.v_sent[i];
   if (r.joints[i].kind != JointKind::Position) {
     r.q_sent[i] = r.q_cmd[i];
     r.v_sent[i] = r.v_cmd[i];

@@ -210,6 +210,7 @@ class Controller {
   std::vector<std::unique_ptr<drivers::BusRouter>> routers_;
   std::vector<RobotIo> robots_;
   std::vector<std::uint8_t> commanded_;  ///< per robot: state: commanded (no feedback correction)
+  std::vector<std::uint8_t> interpolating_;  ///< per robot: interpolating_drives
   std::unique_ptr<ContactEstimator> estimator_;
   std::array<CycleHook*, kMaxHooks> hooks_{};
   int hook_count_ = 0;

@@ -93,6 +93,7 @@ ResolvedHardware resolveHardware(const HardwareSpec& spec, const problem::MultiR
     rr.safe_stop = rh.safe_stop;
     rr.hold_damping = rh.hold_damping;
     rr.state = rh.state;
+    rr.interpolating_drives = rh.interpolating_drives;
     rr.rpdo_timeout_s = rh.rpdo_timeout_s;
     if (rr.entity < 0) {
       fail(rh.source, robotField(r, "entity"), "unknown entity '" + rh.entity + "'");

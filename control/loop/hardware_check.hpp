@@ -52,6 +52,7 @@ struct ResolvedRobot {
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;
   JointState state = JointState::Measured;
+  bool interpolating_drives = false;  ///< RobotHardware::interpolating_drives
   double rpdo_timeout_s = 0.0;           ///< > 0: written to the CiA 402 drives' 0x1400:05
   std::vector<ResolvedDrive> drives;     ///< CiA 402, in the order of the file
   std::vector<ResolvedDrive> impedance;  ///< MIT motors and FD board joints, in the order of the file

@@ -77,6 +77,10 @@ struct RobotHardware {
   SafeStop safe_stop = SafeStop::Hold;
   double hold_damping = 1.0;  ///< 1/s: hold decays the commanded velocity by this rate
   JointState state = JointState::Measured;
+  /// true: the drives ramp to each cyclic setpoint over the robot's period and sample their
+  /// feedback at the SYNC that starts the ramp, so the velocity they report is that of the previous
+  /// setpoint's ramp; the measured state's velocity is corrected against it (docs/loop.md).
+  bool interpolating_drives = false;
   /// > 0: the deadline of each CiA 402 drive's RPDO1 in seconds, written to 0x1400:05 (its event
   /// timer, in ms) at boot; a drive that watches it reacts when the controller's setpoints stop.
   /// 0: not written (the drive's own value stands).

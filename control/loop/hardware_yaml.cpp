@@ -136,8 +136,8 @@ SensorDecl readSensor(const Reader& r, const YAML::Node& n, const std::string& p
 
 RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string& path) {
   const Map m(r, n, path,
-              {"entity", "divisor", "safe_stop", "hold_damping", "state", "rpdo_timeout", "cia402", "mit",
-               "fd", "ft_sensors", "imus"});
+              {"entity", "divisor", "safe_stop", "hold_damping", "state", "interpolating_drives", "rpdo_timeout",
+               "cia402", "mit", "fd", "ft_sensors", "imus"});
   RobotHardware rh;
   rh.entity = m.name("entity");
   rh.divisor = m.integer("divisor", 1, 1000, 1);
@@ -162,6 +162,7 @@ RobotHardware readRobot(const Reader& r, const YAML::Node& n, const std::string&
       r.fail(*s, m.at("state"), "expected measured or commanded, got \"" + v + "\"");
     }
   }
+  rh.interpolating_drives = m.boolean("interpolating_drives", false);
   if (const YAML::Node* t = m.find("rpdo_timeout")) {
     // 0x1400:05 holds milliseconds in 16 bits.
     rh.rpdo_timeout_s = m.number("rpdo_timeout", Bound::Positive, 0.0);

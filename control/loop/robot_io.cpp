@@ -194,6 +194,7 @@ RobotIo makeRobotIo(const ResolvedHardware& hw, std::size_t robot, const problem
   r.stale.assign(n, 0);
   r.q_sent.assign(n, 0.0);
   r.v_sent.assign(n, 0.0);
+  r.v_sent_before.assign(n, 0.0);
   r.miss_rate.assign(n, 0.0);
   return r;
 }

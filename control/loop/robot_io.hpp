@@ -58,6 +58,7 @@ struct RobotIo {
   std::vector<double> q_cmd, v_cmd, tau_cmd;
   std::vector<double> q_meas, v_meas;
   std::vector<double> q_sent, v_sent;  ///< the last setpoint sent, as the drive reports it
+  std::vector<double> v_sent_before;   ///< v_sent of the setpoint sent before it
   std::vector<std::uint32_t> stale;    ///< consecutive robot cycles without fresh feedback
   std::vector<double> miss_rate;       ///< averaged rate of robot cycles without fresh feedback
   double tracking_error_max = 0.0;     ///< |measured − commanded|, rad

@@ -126,6 +126,17 @@ TEST_CASE("loop: a robot's joint state is measured by default, or commanded", "[
         "s.yaml:19: hardware.robots[0].state: expected measured or commanded, got \"estimated\"");
 }
 
+TEST_CASE("loop: a robot's drives interpolate their setpoints only when the section says so", "[loop][hardware]") {
+  const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";  // lines 16-18
+  CHECK_FALSE(kPanda.resolve(kBuses + robot + kDrives).robots.at(0).interpolating_drives);
+  CHECK(kPanda.resolve(kBuses + robot + "      interpolating_drives: true\n" + kDrives).robots.at(0).interpolating_drives);
+  CHECK_FALSE(
+      kPanda.resolve(kBuses + robot + "      interpolating_drives: false\n" + kDrives).robots.at(0).interpolating_drives);
+  const std::string error = kPanda.errorOf(kBuses + robot + "      interpolating_drives: often\n" + kDrives);
+  INFO(error);
+  CHECK(error.rfind("s.yaml:19: hardware.robots[0].interpolating_drives: ", 0) == 0);
+}
+
 TEST_CASE("loop: the frame-loss limit and its window come from the hardware section", "[loop][hardware]") {
   const std::string robot = "  robots:\n    - entity: panda\n      divisor: 4\n";
   const loop::ResolvedHardware d = kPanda.resolve(kBuses + robot + kDrives);
