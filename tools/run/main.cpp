@@ -190,7 +190,13 @@ int runMain(int argc, char** argv) {
     }
   }
 
-  loop::Controller ctrl(p, rh, buses);
+  // The ideal plant's emulated drives reach each setpoint at once: none of them interpolates,
+  // whatever the scene's hardware section says of the real ones (docs/loop.md, step 2).
+  loop::ResolvedHardware controller_hw = rh;
+  if (sim && ideal != nullptr) {
+    for (auto& robot : controller_hw.robots) robot.interpolating_drives = false;
+  }
+  loop::Controller ctrl(p, controller_hw, buses);
   std::vector<std::string> task_names(static_cast<std::size_t>(p.taskCapacity()));
   for (const auto& [name, id] : sc.tasks) task_names[static_cast<std::size_t>(id)] = name;
   std::vector<std::string> contact_names(static_cast<std::size_t>(p.contactCapacity()));
