@@ -145,6 +145,18 @@ void printCounts(double plant_s, const Counters& n) {
               static_cast<unsigned long long>(n.send_failures));
 }
 
+/// Moves the next frame the controller sent on interface `b` (not this process's own) into its
+/// simulated bus; false when none is waiting. The frame is left in `rx`.
+bool bridgeIn(const Bridge& br, std::size_t b, drivers::RxFrame& rx, Counters& n) {
+  for (;;) {
+    const drivers::ReceiveResult r = br.can[b]->receive(rx);
+    if (r == drivers::ReceiveResult::Empty || r == drivers::ReceiveResult::Failed) return false;
+    if (r != drivers::ReceiveResult::Frame || rx.own) continue;
+    if (br.rig.master(b).send(rx.frame) == drivers::SendResult::Ok) ++n.to_plant;
+    return true;
+  }
+}
+
 /// --clock realtime: every step (absolute deadlines) the controller's frames enter the simulated
 /// buses at the plant's present time, the firmware and the plant run to the present, and what the
 /// devices sent goes out.
@@ -158,12 +170,7 @@ void runRealtime(const Options& o, const Bridge& br, Counters& n) {
   drivers::RxFrame rx;
   while (g_stop == 0 && (end == 0 || now < end)) {
     for (std::size_t b = 0; b < br.can.size(); ++b) {
-      for (;;) {
-        const drivers::ReceiveResult r = br.can[b]->receive(rx);
-        if (r == drivers::ReceiveResult::Empty || r == drivers::ReceiveResult::Failed) break;
-        if (r != drivers::ReceiveResult::Frame || rx.own) continue;
-        if (br.rig.master(b).send(rx.frame) == drivers::SendResult::Ok) ++n.to_plant;
-      }
+      while (bridgeIn(br, b, rx, n)) {}
     }
     br.rig.advanceTo(now);
     for (std::size_t b = 0; b < br.can.size(); ++b) forwardOut(br, b, n);
@@ -221,11 +228,7 @@ void runLockstep(const Options& o, const loop::ResolvedHardware& rh, const Bridg
     // Locked buses move only with the controller's frames: wait for them.
     (void)::poll(fds.data(), fds.size(), lc.allLocked() ? 100 : step_ms);
     for (std::size_t b = 0; b < br.can.size(); ++b) {
-      for (;;) {
-        const drivers::ReceiveResult r = br.can[b]->receive(rx);
-        if (r == drivers::ReceiveResult::Empty || r == drivers::ReceiveResult::Failed) break;
-        if (r != drivers::ReceiveResult::Frame || rx.own) continue;
-        if (br.rig.master(b).send(rx.frame) == drivers::SendResult::Ok) ++n.to_plant;
+      while (bridgeIn(br, b, rx, n)) {
         if (rx.frame.id != MRQP_FW_COB_SYNC) continue;
         runBus(b, lc.onSync(b));
         stepPlant();
