@@ -42,6 +42,11 @@ class Plant {
   virtual ~Plant() = default;
   /// "ideal" or "mujoco".
   virtual const char* kind() const noexcept = 0;
+  /// Whether the emulated position drives ramp to each cyclic setpoint over its period (and so
+  /// report the previous setpoint's velocity at the SYNC) rather than reach it at once: what a
+  /// robot's `interpolating_drives` declares of real drives (docs/loop.md), true of a simulated
+  /// bus only where the plant's drives do it.
+  virtual bool drivesInterpolate() const noexcept { return false; }
 
   // ---- set-up: scene names → handles (−1 when the plant has no such thing) ----
   virtual int entityHandle(const std::string& entity) const = 0;

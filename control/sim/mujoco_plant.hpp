@@ -53,6 +53,8 @@ class MujocoPlant final : public loop::Plant {
   MujocoPlant& operator=(const MujocoPlant&) = delete;
 
   const char* kind() const noexcept override { return "mujoco"; }
+  /// The plant section's `drives.interpolate`.
+  bool drivesInterpolate() const noexcept override { return drives_.interpolate; }
 
   int entityHandle(const std::string& entity) const override;
   int jointHandle(const std::string& entity, const std::string& joint) const override;

@@ -170,6 +170,8 @@ settings: {gravity: [0, 0, 0]}
     c.kd = 2.0e3;
     c.position = 0.0;
     plant->setServo(j, c);
+    // What the controller is told of these drives on a simulated bus (docs/loop.md, step 2).
+    CHECK(plant->drivesInterpolate() == interpolate);
     plant->step(0.004);
     c.position = 0.01;
     c.velocity = 0.01 / 0.004;

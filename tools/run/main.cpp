@@ -190,10 +190,11 @@ int runMain(int argc, char** argv) {
     }
   }
 
-  // The ideal plant's emulated drives reach each setpoint at once: none of them interpolates,
-  // whatever the scene's hardware section says of the real ones (docs/loop.md, step 2).
+  // On simulated buses the drives are the plant's emulated ones: they interpolate only where the
+  // plant's do (the ideal plant's reach each setpoint at once), whatever the scene's hardware
+  // section says of the real ones (docs/loop.md, step 2).
   loop::ResolvedHardware controller_hw = rh;
-  if (sim && ideal != nullptr) {
+  if (sim && !plant->drivesInterpolate()) {
     for (auto& robot : controller_hw.robots) robot.interpolating_drives = false;
   }
   loop::Controller ctrl(p, controller_hw, buses);
